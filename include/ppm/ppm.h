@@ -1,0 +1,236 @@
+/*
+ * libppm — exact ray tracing of bicubic Bezier patches and progressive photon mapping.
+ *
+ * This header is the specification of the C ABI. It is C99 and self-contained.
+ *
+ * Conventions that hold for every function unless its comment says otherwise:
+ *  - Every fallible call returns a ppm_status; PPM_OK (0) is success. On failure no output
+ *    parameter is written and ppm_last_error_message() on the same thread says what was wrong
+ *    and where (argument name, file and line, index). The context's error callback, if set,
+ *    receives the same message.
+ *  - No function aborts, exits, or lets a C++ exception escape.
+ *  - Handles are opaque and reference counted: *_create returns a handle holding one
+ *    reference, *_retain adds one, *_release drops one and frees the object at zero.
+ *    *_release(NULL) is a no-op. A child holds a reference to its parent (a scene keeps its
+ *    context alive), so handles may be released in any order.
+ *  - Pointers passed in are only read during the call; the library copies what it keeps.
+ *  - Threads: different handles may be used from different threads at once. A single scene
+ *    may be queried (ppm_scene_intersect/occluded, getters) from many threads at once after
+ *    ppm_scene_commit, but building it (add/set/commit) must not overlap any other call on it.
+ *  - Doubles are IEEE binary64; all geometry is stored and intersected in double precision.
+ */
+#ifndef PPM_PPM_H
+#define PPM_PPM_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include <ppm/config.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---------------------------------------------------------------------------------------- */
+/* Status codes and errors                                                                   */
+/* ---------------------------------------------------------------------------------------- */
+
+/* Values are part of the ABI and never renumbered. */
+typedef enum ppm_status {
+    PPM_OK = 0,
+    PPM_ERROR_INVALID_ARGUMENT = 1,  /* NULL where a pointer is needed, NaN/Inf, bad size, unknown key */
+    PPM_ERROR_INVALID_OPERATION = 2, /* call not allowed in the object's state (e.g. query before commit) */
+    PPM_ERROR_OUT_OF_MEMORY = 3,
+    PPM_ERROR_IO = 4,                /* a file could not be opened or read */
+    PPM_ERROR_PARSE = 5,             /* a file's content is malformed; the message names file and line */
+    PPM_ERROR_UNSUPPORTED = 6,       /* valid request the library cannot serve (e.g. CPU without SSE2) */
+    PPM_ERROR_CANCELLED = 7,
+    PPM_ERROR_INTERNAL = 8           /* a bug in libppm: please report the message */
+} ppm_status;
+
+/* Version of the library actually loaded (compare with PPM_VERSION from ppm/config.h):
+ * major * 10000 + minor * 100 + patch. Thread safe, never fails. */
+PPM_API uint32_t ppm_version(void);
+/* "major.minor.patch"; a static string. Thread safe, never fails. */
+PPM_API const char *ppm_version_string(void);
+
+/* Short constant English name of a status ("invalid argument"); never NULL. Thread safe. */
+PPM_API const char *ppm_status_string(ppm_status status);
+
+/* Message of the last failed ppm_* call on the calling thread, or "" if the last call
+ * succeeded. Works without any handle, so it explains why a *_create failed. The string
+ * belongs to the library and stays valid until the next ppm_* call on the same thread. */
+PPM_API const char *ppm_last_error_message(void);
+
+/* ---------------------------------------------------------------------------------------- */
+/* Context: the root object. Owns the Embree device, the worker threads and error reporting.  */
+/* ---------------------------------------------------------------------------------------- */
+
+typedef struct ppm_context_t *ppm_context;
+
+/* Called on the failing thread after the per-thread message is set. Must not call back
+ * into the same object. `message` is valid only during the call. */
+typedef void (*ppm_error_callback)(void *user_data, ppm_status status, const char *message);
+
+/* Creates a context with default settings (all hardware threads).
+ * Errors: INVALID_ARGUMENT (out NULL), UNSUPPORTED (Embree device creation failed). */
+PPM_API ppm_status ppm_context_create(ppm_context *out_context);
+PPM_API ppm_status ppm_context_retain(ppm_context context);
+PPM_API void ppm_context_release(ppm_context context);
+
+/* Integer settings of a context. Keys:
+ *   "threads"  worker threads for batch queries and scene builds; 0 (default) = all hardware
+ *              threads; 1..1024 otherwise. Takes effect for calls that start after it.
+ * Errors: INVALID_ARGUMENT (NULL, unknown key, value out of range).
+ * Thread safety: not concurrently with other calls using the same context. */
+PPM_API ppm_status ppm_context_set_int(ppm_context context, const char *key, int64_t value);
+PPM_API ppm_status ppm_context_get_int(ppm_context context, const char *key, int64_t *out_value);
+
+/* Sets (or clears, with callback NULL) the error callback. Not concurrently with other calls
+ * using the same context. */
+PPM_API ppm_status ppm_context_set_error_callback(ppm_context context, ppm_error_callback callback,
+                                                  void *user_data);
+
+/* ---------------------------------------------------------------------------------------- */
+/* Scene: geometry, built then committed, then queried.                                      */
+/* ---------------------------------------------------------------------------------------- */
+
+typedef struct ppm_scene_t *ppm_scene;
+
+#define PPM_INVALID_ID 0xFFFFFFFFu
+
+/* Creates an empty scene. The scene retains the context. */
+PPM_API ppm_status ppm_scene_create(ppm_context context, ppm_scene *out_scene);
+PPM_API ppm_status ppm_scene_retain(ppm_scene scene);
+PPM_API void ppm_scene_release(ppm_scene scene);
+
+/* Floating-point settings of a scene. Keys:
+ *   "tolerance"  accuracy of every reported hit, relative to the diagonal of the scene's
+ *                bounding box: hit distance and point are within tolerance * diagonal of the
+ *                exact ones. Default 1e-9; range [1e-14, 1e-2]. Looser is faster only where
+ *                the surface is degenerate or the ray tangent; Newton converges anyway.
+ * A change takes effect at the next ppm_scene_commit.
+ * Errors: INVALID_ARGUMENT (NULL, unknown key, value NaN or out of range). */
+PPM_API ppm_status ppm_scene_set_double(ppm_scene scene, const char *key, double value);
+PPM_API ppm_status ppm_scene_get_double(ppm_scene scene, const char *key, double *out_value);
+
+/* Geometry. Each add call copies its input and returns a geometry id (0, 1, 2, ... in the
+ * order of addition) in *out_geom_id, which may be NULL. Adding marks the scene uncommitted.
+ * Coordinates must be finite; degenerate input (zero radius, zero-area quad, out-of-range
+ * index) is INVALID_ARGUMENT naming the offending element. Zero-area triangles of a mesh are
+ * allowed and never hit. */
+
+/* Bicubic Bezier patches: `control_points` holds patch_count * 16 * 3 doubles; patch p has
+ * control points P[i][j] at index p*16 + i*4 + j (x, y, z consecutive) and the surface
+ *   S(u, v) = sum_i sum_j B_i(v) B_j(u) P[i][j],  u, v in [0, 1], B = cubic Bernstein,
+ * i.e. u runs along a row of four points, v across rows (the .bpt and Embree convention).
+ * Patches are two-sided. Collapsed edges (a row of equal points) are allowed. */
+PPM_API ppm_status ppm_scene_add_bezier_patches(ppm_scene scene, const double *control_points,
+                                                size_t patch_count, uint32_t *out_geom_id);
+
+/* Reads a .bpt file (patch count, then per patch a "3 3" degree line and 16 "x y z" lines)
+ * and adds its patches as one geometry. Errors: IO (cannot open, read error), PARSE (the
+ * message names file and line: truncated, not a number, NaN/Inf, wrong degree, count that
+ * does not match the content or exceeds 10 000 000). */
+PPM_API ppm_status ppm_scene_load_bpt(ppm_scene scene, const char *path, uint32_t *out_geom_id);
+
+/* Sphere with centre and radius > 0. Hit (u, v) = (phi / 2pi, theta / pi), with theta measured
+ * from +z and phi from +x towards +y (Mitsuba 3's convention). */
+PPM_API ppm_status ppm_scene_add_sphere(ppm_scene scene, const double center[3], double radius,
+                                        uint32_t *out_geom_id);
+
+/* Parallelogram (a rectangle when the edges are orthogonal) {origin + s*edge_u + t*edge_v :
+ * s, t in [0, 1]}; hit (u, v) = (s, t); geometric normal edge_u x edge_v. Two-sided. */
+PPM_API ppm_status ppm_scene_add_quad(ppm_scene scene, const double origin[3],
+                                      const double edge_u[3], const double edge_v[3],
+                                      uint32_t *out_geom_id);
+
+/* Triangle mesh: vertex_count positions (3 doubles each), triangle_count index triples.
+ * `normals` (3 doubles per vertex) and `uvs` (2 doubles per vertex) may be NULL. Hit (u, v)
+ * are the barycentric coordinates of vertices 1 and 2 (Embree's); the shading normal
+ * interpolates `normals` when given. Two-sided. */
+PPM_API ppm_status ppm_scene_add_triangle_mesh(ppm_scene scene, const double *positions,
+                                               size_t vertex_count, const uint32_t *indices,
+                                               size_t triangle_count, const double *normals,
+                                               const double *uvs, uint32_t *out_geom_id);
+
+/* Reads a Wavefront OBJ file (through tinyobjloader; all its shapes become one triangle
+ * mesh, polygons triangulated, per-vertex normals and texture coordinates kept when every
+ * face has them). Errors: IO, PARSE (message names file and line where the loader says). */
+PPM_API ppm_status ppm_scene_load_obj(ppm_scene scene, const char *path, uint32_t *out_geom_id);
+
+/* Affine transform of a geometry: 16 doubles, row-major 4x4 matrix M applied to points as
+ * M * (x, y, z, 1); the last row must be (0, 0, 0, 1) and the upper 3x3 invertible. Patches
+ * and meshes are transformed exactly (control points); spheres need a similarity transform
+ * (uniform scale). Default identity. Applied at commit. */
+PPM_API ppm_status ppm_scene_set_geometry_transform(ppm_scene scene, uint32_t geom_id,
+                                                    const double matrix[16]);
+
+/* User material id reported in every hit of this geometry (default 0). */
+PPM_API ppm_status ppm_scene_set_geometry_material(ppm_scene scene, uint32_t geom_id,
+                                                   uint32_t material_id);
+
+/* Number of primitives of a geometry: patches, triangles, or 1 for a sphere or quad. */
+PPM_API ppm_status ppm_scene_get_primitive_count(ppm_scene scene, uint32_t geom_id,
+                                                 size_t *out_count);
+
+/* Builds the acceleration structure. Required after any change and before queries.
+ * Errors: INVALID_OPERATION (empty scene). */
+PPM_API ppm_status ppm_scene_commit(ppm_scene scene);
+
+/* Axis-aligned bounds of the committed scene (control-point hulls for patches). */
+PPM_API ppm_status ppm_scene_get_bounds(ppm_scene scene, double out_lower[3], double out_upper[3]);
+
+/* ---------------------------------------------------------------------------------------- */
+/* Ray queries                                                                               */
+/* ---------------------------------------------------------------------------------------- */
+
+/* A ray org + t * dir for t in [tnear, tfar]. dir need not be unit length (t is in units of
+ * |dir|) but must be nonzero and finite; tnear >= 0, tnear <= tfar, tfar may be INFINITY. */
+typedef struct ppm_ray {
+    double org[3];
+    double tnear;
+    double dir[3];
+    double tfar;
+} ppm_ray;
+
+/* The closest hit of a ray. On a miss t = INFINITY and geom_id = PPM_INVALID_ID, other
+ * fields 0. */
+typedef struct ppm_hit {
+    double t;          /* ray parameter of the hit */
+    double u, v;       /* surface parameters: (u, v) in the original patch, see each add call */
+    double p[3];       /* hit point evaluated on the surface, S(u, v) */
+    double p_error;    /* bound on the distance of p from the exact hit point: the scene
+                          tolerance plus rounding; ppm_hit_spawn_ray steps over it */
+    double ng[3];      /* unit geometric normal (dS/du x dS/dv; the limit normal where a
+                          derivative vanishes); as stored, not flipped towards the ray */
+    double ns[3];      /* unit shading normal (interpolated vertex normal on meshes) */
+    uint32_t geom_id;  /* geometry id from the add call */
+    uint32_t prim_id;  /* patch or triangle index within the geometry; 0 for spheres, quads */
+    uint32_t material; /* material id of the geometry */
+    uint32_t reserved; /* 0 */
+} ppm_hit;
+
+/* Closest hit of each of `count` rays, written to hits[i]. Large batches run on the
+ * context's worker threads. Errors: INVALID_ARGUMENT (NULL, a ray with NaN/Inf origin, zero or
+ * non-finite direction, tnear < 0 or tnear > tfar: the message names the first bad index),
+ * INVALID_OPERATION (scene not committed). Thread safe on a committed scene. */
+PPM_API ppm_status ppm_scene_intersect(ppm_scene scene, const ppm_ray *rays, size_t count,
+                                       ppm_hit *hits);
+
+/* Whether each ray hits anything in [tnear, tfar]: occluded[i] = 1 or 0. Same rules. */
+PPM_API ppm_status ppm_scene_occluded(ppm_scene scene, const ppm_ray *rays, size_t count,
+                                      uint8_t *occluded);
+
+/* A ray leaving a hit point in direction `dir` (either side of the surface) that does not
+ * hit the surface at its own origin: the origin is moved off the surface by twice p_error
+ * along ng, on the side `dir` points to; tnear = 0, tfar = INFINITY.
+ * Real surfaces closer than that bound (about tolerance * diagonal) are not seen.
+ * Pure function of its arguments; thread safe. */
+PPM_API ppm_status ppm_hit_spawn_ray(const ppm_hit *hit, const double dir[3], ppm_ray *out_ray);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* PPM_PPM_H */

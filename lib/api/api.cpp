@@ -1,0 +1,383 @@
+// The C ABI. The only file that sees handles: it checks arguments, calls the C++ objects and
+// turns every exception into a ppm_status plus the per-thread message.
+#include <ppm/ppm.h>
+
+#include "core/context.h"
+#include "core/error.h"
+#include "geometry/mesh_geometry.h"
+#include "geometry/patch_geometry.h"
+#include "geometry/quad_geometry.h"
+#include "geometry/sphere_geometry.h"
+#include "io/bpt_reader.h"
+#include "io/obj_reader.h"
+#include "scene/scene.h"
+
+#include <cstring>
+#include <new>
+#include <string>
+
+struct ppm_context_t : ppm::Context {};
+struct ppm_scene_t : ppm::Scene {
+    using Scene::Scene;
+};
+
+namespace {
+
+using ppm::invalid_argument;
+
+thread_local std::string last_error;
+
+// Runs `body`, mapping exceptions to a status; reports failures to the context's callback.
+template <class Body> ppm_status guarded(const ppm::Context *context, Body &&body) noexcept {
+    ppm_status status = PPM_OK;
+    try {
+        body();
+        last_error.clear();
+        return PPM_OK;
+    } catch (const ppm::Error &e) {
+        status = e.status();
+        last_error = e.what();
+    } catch (const std::bad_alloc &) {
+        status = PPM_ERROR_OUT_OF_MEMORY;
+        last_error = "out of memory";
+    } catch (const std::exception &e) {
+        status = PPM_ERROR_INTERNAL;
+        last_error = std::string("internal error: ") + e.what();
+    } catch (...) {
+        status = PPM_ERROR_INTERNAL;
+        last_error = "internal error: unknown exception";
+    }
+    if (context) context->report_error(status, last_error.c_str());
+    return status;
+}
+
+template <class T> void require(const T *pointer, const char *name) {
+    if (!pointer) invalid_argument(std::string(name) + " is NULL");
+}
+
+void require_key(const char *key) { require(key, "key"); }
+
+ppm::Vec3 finite_point(const double *p, const char *name) {
+    require(p, name);
+    const ppm::Vec3 v = ppm::Vec3::from(p);
+    if (!ppm::is_finite(v)) invalid_argument(std::string(name) + " has a NaN or infinite coordinate");
+    return v;
+}
+
+template <class Body> ppm_status scene_call(ppm_scene scene, Body &&body) noexcept {
+    if (!scene) return guarded(nullptr, [] { invalid_argument("scene is NULL"); });
+    return guarded(&scene->context(), [&] { body(*scene); });
+}
+
+void write_id(uint32_t *out, uint32_t id) {
+    if (out) *out = id;
+}
+
+// `make` validates its input and returns the new geometry (or throws).
+template <class Make> ppm_status add_geometry(ppm_scene scene, uint32_t *out_geom_id, Make &&make) {
+    return scene_call(scene, [&](ppm::Scene &s) { write_id(out_geom_id, s.add(make())); });
+}
+
+} // namespace
+
+extern "C" {
+
+uint32_t ppm_version(void) { return PPM_VERSION; }
+const char *ppm_version_string(void) { return PPM_VERSION_STRING; }
+
+const char *ppm_status_string(ppm_status status) {
+    switch (status) {
+    case PPM_OK: return "ok";
+    case PPM_ERROR_INVALID_ARGUMENT: return "invalid argument";
+    case PPM_ERROR_INVALID_OPERATION: return "invalid operation";
+    case PPM_ERROR_OUT_OF_MEMORY: return "out of memory";
+    case PPM_ERROR_IO: return "input/output error";
+    case PPM_ERROR_PARSE: return "parse error";
+    case PPM_ERROR_UNSUPPORTED: return "unsupported";
+    case PPM_ERROR_CANCELLED: return "cancelled";
+    case PPM_ERROR_INTERNAL: return "internal error";
+    }
+    return "unknown status";
+}
+
+const char *ppm_last_error_message(void) { return last_error.c_str(); }
+
+/* Context ----------------------------------------------------------------------------- */
+
+ppm_status ppm_context_create(ppm_context *out_context) {
+    return guarded(nullptr, [&] {
+        require(out_context, "out_context");
+        *out_context = new ppm_context_t();
+    });
+}
+
+ppm_status ppm_context_retain(ppm_context context) {
+    return guarded(nullptr, [&] {
+        require(context, "context");
+        context->retain();
+    });
+}
+
+void ppm_context_release(ppm_context context) {
+    if (context) context->release();
+}
+
+ppm_status ppm_context_set_int(ppm_context context, const char *key, int64_t value) {
+    return guarded(context, [&] {
+        require(context, "context");
+        require_key(key);
+        if (std::strcmp(key, "threads") == 0) {
+            if (value < 0 || value > 1024)
+                invalid_argument("threads must be 0 (all hardware threads) or 1..1024, not " + std::to_string(value));
+            context->set_threads(static_cast<int>(value));
+        } else {
+            invalid_argument(std::string("unknown context setting '") + key + "' (known: threads)");
+        }
+    });
+}
+
+ppm_status ppm_context_get_int(ppm_context context, const char *key, int64_t *out_value) {
+    return guarded(context, [&] {
+        require(context, "context");
+        require_key(key);
+        require(out_value, "out_value");
+        if (std::strcmp(key, "threads") != 0)
+            invalid_argument(std::string("unknown context setting '") + key + "' (known: threads)");
+        *out_value = context->threads();
+    });
+}
+
+ppm_status ppm_context_set_error_callback(ppm_context context, ppm_error_callback callback, void *user_data) {
+    return guarded(nullptr, [&] {
+        require(context, "context");
+        context->set_error_callback(callback, user_data);
+    });
+}
+
+/* Scene ------------------------------------------------------------------------------- */
+
+ppm_status ppm_scene_create(ppm_context context, ppm_scene *out_scene) {
+    return guarded(context, [&] {
+        require(context, "context");
+        require(out_scene, "out_scene");
+        *out_scene = new ppm_scene_t(*context);
+    });
+}
+
+ppm_status ppm_scene_retain(ppm_scene scene) {
+    return scene_call(scene, [](ppm::Scene &s) { s.retain(); });
+}
+
+void ppm_scene_release(ppm_scene scene) {
+    if (scene) scene->release();
+}
+
+ppm_status ppm_scene_set_double(ppm_scene scene, const char *key, double value) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        require_key(key);
+        if (std::strcmp(key, "tolerance") != 0)
+            invalid_argument(std::string("unknown scene setting '") + key + "' (known: tolerance)");
+        s.set_tolerance(value);
+    });
+}
+
+ppm_status ppm_scene_get_double(ppm_scene scene, const char *key, double *out_value) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        require_key(key);
+        require(out_value, "out_value");
+        if (std::strcmp(key, "tolerance") != 0)
+            invalid_argument(std::string("unknown scene setting '") + key + "' (known: tolerance)");
+        *out_value = s.tolerance();
+    });
+}
+
+ppm_status ppm_scene_add_bezier_patches(ppm_scene scene, const double *control_points,
+                                        size_t patch_count, uint32_t *out_geom_id) {
+    return add_geometry(scene, out_geom_id, [&] {
+        require(control_points, "control_points");
+        if (patch_count == 0) invalid_argument("patch_count is 0");
+        if (patch_count > ppm::max_bpt_patches)
+            invalid_argument("patch_count " + std::to_string(patch_count) + " exceeds the limit of " +
+                             std::to_string(ppm::max_bpt_patches));
+        std::vector<ppm::BezierPatch> patches(patch_count);
+        for (size_t p = 0; p < patch_count; ++p)
+            for (int k = 0; k < 16; ++k) {
+                const double *c = control_points + (p * 16 + k) * 3;
+                patches[p].p[k] = ppm::Vec3::from(c);
+                if (!ppm::is_finite(patches[p].p[k]))
+                    invalid_argument("patch " + std::to_string(p) + " control point " + std::to_string(k) +
+                                     " has a NaN or infinite coordinate");
+            }
+        return std::make_unique<ppm::PatchGeometry>(std::move(patches));
+    });
+}
+
+ppm_status ppm_scene_load_bpt(ppm_scene scene, const char *path, uint32_t *out_geom_id) {
+    return add_geometry(scene, out_geom_id, [&] {
+        require(path, "path");
+        return std::make_unique<ppm::PatchGeometry>(ppm::read_bpt_file(path));
+    });
+}
+
+ppm_status ppm_scene_add_sphere(ppm_scene scene, const double center[3], double radius, uint32_t *out_geom_id) {
+    return add_geometry(scene, out_geom_id, [&] {
+        const ppm::Vec3 c = finite_point(center, "center");
+        if (!(radius > 0) || !std::isfinite(radius))
+            invalid_argument("sphere radius must be finite and > 0, not " + ppm::format_number(radius));
+        return std::make_unique<ppm::SphereGeometry>(c, radius);
+    });
+}
+
+ppm_status ppm_scene_add_quad(ppm_scene scene, const double origin[3], const double edge_u[3],
+                              const double edge_v[3], uint32_t *out_geom_id) {
+    return add_geometry(scene, out_geom_id, [&] {
+        const ppm::Vec3 o = finite_point(origin, "origin");
+        const ppm::Vec3 eu = finite_point(edge_u, "edge_u");
+        const ppm::Vec3 ev = finite_point(edge_v, "edge_v");
+        const double area = ppm::length(ppm::cross(eu, ev));
+        if (!(area > 1e-12 * ppm::length(eu) * ppm::length(ev)) || !std::isfinite(area))
+            invalid_argument("quad edges are zero or parallel: the quad has no area");
+        return std::make_unique<ppm::QuadGeometry>(o, eu, ev);
+    });
+}
+
+ppm_status ppm_scene_add_triangle_mesh(ppm_scene scene, const double *positions, size_t vertex_count,
+                                       const uint32_t *indices, size_t triangle_count,
+                                       const double *normals, const double *uvs, uint32_t *out_geom_id) {
+    return add_geometry(scene, out_geom_id, [&] {
+        require(positions, "positions");
+        require(indices, "indices");
+        if (vertex_count == 0 || triangle_count == 0) invalid_argument("mesh has no vertices or no triangles");
+        if (vertex_count >= PPM_INVALID_ID || triangle_count >= PPM_INVALID_ID / 3)
+            invalid_argument("mesh is too large (at most 2^32 - 1 vertices and 2^32 / 3 triangles)");
+        ppm::MeshData mesh;
+        mesh.positions.resize(vertex_count);
+        for (size_t k = 0; k < vertex_count; ++k) {
+            mesh.positions[k] = ppm::Vec3::from(positions + 3 * k);
+            if (!ppm::is_finite(mesh.positions[k]))
+                invalid_argument("vertex " + std::to_string(k) + " has a NaN or infinite coordinate");
+        }
+        mesh.indices.assign(indices, indices + 3 * triangle_count);
+        for (size_t k = 0; k < mesh.indices.size(); ++k)
+            if (mesh.indices[k] >= vertex_count)
+                invalid_argument("triangle " + std::to_string(k / 3) + " uses vertex " + std::to_string(mesh.indices[k]) +
+                                 " of " + std::to_string(vertex_count));
+        if (normals) {
+            mesh.normals.resize(vertex_count);
+            for (size_t k = 0; k < vertex_count; ++k) {
+                mesh.normals[k] = ppm::Vec3::from(normals + 3 * k);
+                if (!ppm::is_finite(mesh.normals[k]))
+                    invalid_argument("normal " + std::to_string(k) + " has a NaN or infinite coordinate");
+            }
+        }
+        if (uvs) {
+            mesh.uvs.assign(uvs, uvs + 2 * vertex_count);
+            for (size_t k = 0; k < mesh.uvs.size(); ++k)
+                if (!std::isfinite(mesh.uvs[k]))
+                    invalid_argument("uv " + std::to_string(k / 2) + " is NaN or infinite");
+        }
+        return std::make_unique<ppm::MeshGeometry>(std::move(mesh));
+    });
+}
+
+ppm_status ppm_scene_load_obj(ppm_scene scene, const char *path, uint32_t *out_geom_id) {
+    return add_geometry(scene, out_geom_id, [&] {
+        require(path, "path");
+        return std::make_unique<ppm::MeshGeometry>(ppm::read_obj_file(path));
+    });
+}
+
+ppm_status ppm_scene_set_geometry_transform(ppm_scene scene, uint32_t geom_id, const double matrix[16]) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        ppm::Geometry &g = s.geometry(geom_id);
+        require(matrix, "matrix");
+        ppm::Affine transform;
+        for (int k = 0; k < 16; ++k)
+            if (!std::isfinite(matrix[k])) invalid_argument("matrix element " + std::to_string(k) + " is not finite");
+        if (matrix[12] != 0 || matrix[13] != 0 || matrix[14] != 0 || matrix[15] != 1)
+            invalid_argument("the last row of the matrix must be (0, 0, 0, 1): projective transforms are not supported");
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 4; ++c) transform.m[r][c] = matrix[4 * r + c];
+        const double det = transform.determinant();
+        double scale = 0;
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) scale = std::max(scale, std::fabs(transform.m[r][c]));
+        if (!(std::fabs(det) > 1e-12 * scale * scale * scale))
+            invalid_argument("the matrix's upper 3x3 is singular");
+        try {
+            g.check_transform(transform);
+        } catch (const ppm::Error &e) {
+            invalid_argument("geometry " + std::to_string(geom_id) + " (" + g.kind() + "): " + e.what());
+        }
+        g.transform = transform;
+        s.mark_modified();
+    });
+}
+
+ppm_status ppm_scene_set_geometry_material(ppm_scene scene, uint32_t geom_id, uint32_t material_id) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        s.geometry(geom_id).material = material_id;
+        s.mark_modified();
+    });
+}
+
+ppm_status ppm_scene_get_primitive_count(ppm_scene scene, uint32_t geom_id, size_t *out_count) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        const ppm::Geometry &g = s.geometry(geom_id);
+        require(out_count, "out_count");
+        *out_count = g.primitive_count();
+    });
+}
+
+ppm_status ppm_scene_commit(ppm_scene scene) {
+    return scene_call(scene, [](ppm::Scene &s) { s.commit(); });
+}
+
+ppm_status ppm_scene_get_bounds(ppm_scene scene, double out_lower[3], double out_upper[3]) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        require(out_lower, "out_lower");
+        require(out_upper, "out_upper");
+        if (!s.committed()) ppm::fail(PPM_ERROR_INVALID_OPERATION, "ppm_scene_get_bounds: the scene is not committed");
+        s.bounds().lower.store(out_lower);
+        s.bounds().upper.store(out_upper);
+    });
+}
+
+ppm_status ppm_scene_intersect(ppm_scene scene, const ppm_ray *rays, size_t count, ppm_hit *hits) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        if (count == 0) return;
+        require(rays, "rays");
+        require(hits, "hits");
+        s.intersect(rays, count, hits);
+    });
+}
+
+ppm_status ppm_scene_occluded(ppm_scene scene, const ppm_ray *rays, size_t count, uint8_t *occluded) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        if (count == 0) return;
+        require(rays, "rays");
+        require(occluded, "occluded");
+        s.occluded(rays, count, occluded);
+    });
+}
+
+ppm_status ppm_hit_spawn_ray(const ppm_hit *hit, const double dir[3], ppm_ray *out_ray) {
+    return guarded(nullptr, [&] {
+        require(hit, "hit");
+        require(out_ray, "out_ray");
+        const ppm::Vec3 d = finite_point(dir, "dir");
+        if (!(ppm::length2(d) > 0)) invalid_argument("dir is zero");
+        if (hit->geom_id == PPM_INVALID_ID) invalid_argument("hit is a miss: there is no surface to leave");
+        const ppm::Vec3 p = ppm::Vec3::from(hit->p), n = ppm::Vec3::from(hit->ng);
+        if (!ppm::is_finite(p) || !ppm::is_finite(n) || !std::isfinite(hit->p_error) || hit->p_error < 0)
+            invalid_argument("hit has a NaN or infinite point, normal or p_error");
+        const double side = ppm::dot(d, n) >= 0 ? 1.0 : -1.0;
+        const ppm::Vec3 org = p + n * (2 * hit->p_error * side);
+        org.store(out_ray->org);
+        d.store(out_ray->dir);
+        out_ray->tnear = 0;
+        out_ray->tfar = INFINITY;
+    });
+}
+
+} // extern "C"

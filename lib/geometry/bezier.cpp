@@ -1,0 +1,100 @@
+#include "geometry/bezier.h"
+
+#include <cfloat>
+
+namespace ppm {
+
+namespace {
+
+Vec3 tensor_sum(const BezierPatch &patch, const double bu[4], const double bv[4]) {
+    Vec3 sum;
+    for (int i = 0; i < 4; ++i) {
+        Vec3 row = patch.at(i, 0) * bu[0] + patch.at(i, 1) * bu[1] + patch.at(i, 2) * bu[2] +
+                   patch.at(i, 3) * bu[3];
+        sum += row * bv[i];
+    }
+    return sum;
+}
+
+// Largest distance between control points: the length scale below which a derivative
+// counts as vanished.
+double patch_scale(const BezierPatch &patch) {
+    const Box3 box = control_bounds(patch);
+    return box.diagonal();
+}
+
+} // namespace
+
+Vec3 evaluate(const BezierPatch &patch, double u, double v) {
+    double bu[4], bv[4];
+    bernstein3(u, bu);
+    bernstein3(v, bv);
+    return tensor_sum(patch, bu, bv);
+}
+
+SurfaceDerivatives evaluate_derivatives(const BezierPatch &patch, double u, double v) {
+    double bu[4], bv[4], du[4], dv[4];
+    bernstein3(u, bu);
+    bernstein3(v, bv);
+    bernstein3_derivative(u, du);
+    bernstein3_derivative(v, dv);
+    return {tensor_sum(patch, bu, bv), tensor_sum(patch, du, bv), tensor_sum(patch, bu, dv)};
+}
+
+Vec3 mixed_derivative(const BezierPatch &patch, double u, double v) {
+    double du[4], dv[4];
+    bernstein3_derivative(u, du);
+    bernstein3_derivative(v, dv);
+    return tensor_sum(patch, du, dv);
+}
+
+Vec3 geometric_normal(const BezierPatch &patch, double u, double v) {
+    const double scale = patch_scale(patch);
+    if (!(scale > 0)) return {};
+    // A derivative this small is rounding noise of a collapsed edge, not a tangent.
+    const double vanish = 1e-10 * scale;
+    // Walk towards the patch centre if the point itself is degenerate in both directions
+    // (both derivatives and the twist vanish); three tiny steps suffice for polynomial data.
+    for (int attempt = 0; attempt < 4; ++attempt) {
+        const SurfaceDerivatives d = evaluate_derivatives(patch, u, v);
+        Vec3 tu = d.du, tv = d.dv;
+        // Near a collapsed edge v = e, dS/du ~ (v - e) * d2S/dudv: the limit direction of
+        // the cross product uses the twist vector, with the sign of (v - e).
+        if (length(tu) <= vanish) tu = mixed_derivative(patch, u, v) * (v < 0.5 ? 1.0 : -1.0);
+        if (length(tv) <= vanish) tv = mixed_derivative(patch, u, v) * (u < 0.5 ? 1.0 : -1.0);
+        const Vec3 n = cross(tu, tv);
+        const double len = length(n);
+        if (len > vanish * vanish && std::isfinite(len)) return n / len;
+        const double step = 1e-7 * (attempt + 1);
+        u += (0.5 - u) * step;
+        v += (0.5 - v) * step;
+    }
+    return {};
+}
+
+void split_u(const BezierPatch &patch, double t, BezierPatch &left, BezierPatch &right) {
+    for (int i = 0; i < 4; ++i)
+        de_casteljau_split(&patch.p[i * 4], 1, t, &left.p[i * 4], &right.p[i * 4]);
+}
+
+void split_v(const BezierPatch &patch, double t, BezierPatch &left, BezierPatch &right) {
+    for (int j = 0; j < 4; ++j) de_casteljau_split(&patch.p[j], 4, t, &left.p[j], &right.p[j]);
+}
+
+BezierPatch sub_patch(const BezierPatch &patch, double u0, double u1, double v0, double v1) {
+    BezierPatch a, b, c, d;
+    // Cut at u1 first, then at u0 inside [0, u1] (relative position u0 / u1).
+    if (u1 < 1.0) split_u(patch, u1, a, b); else a = patch;
+    if (u0 > 0.0) split_u(a, u0 / u1, b, c); else c = a;
+    if (v1 < 1.0) split_v(c, v1, a, b); else a = c;
+    if (v0 > 0.0) split_v(a, v0 / v1, b, d); else d = a;
+    return d;
+}
+
+Box3 control_bounds(const BezierPatch &patch) {
+    Box3 box;
+    for (const Vec3 &p : patch.p) box.extend(p);
+    return box;
+}
+
+} // namespace ppm

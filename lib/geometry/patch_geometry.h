@@ -1,0 +1,40 @@
+// Bicubic Bezier patches as Embree user geometry. Each patch is pre-split into sub-patches,
+// which are Embree's primitives, so the BVH culls most of a patch before any patch math.
+#pragma once
+
+#include "geometry/bezier.h"
+#include "scene/geometry.h"
+
+#include <vector>
+
+namespace ppm {
+
+class PatchGeometry : public Geometry {
+public:
+    explicit PatchGeometry(std::vector<BezierPatch> patches);
+
+    const char *kind() const override { return "Bezier patches"; }
+    size_t primitive_count() const override { return source_.size(); }
+    Box3 prepare(const Affine &transform) override;
+    RTCGeometry create_embree(RTCDevice device, const EmbreeFrame &frame) override;
+    void describe_hit(const RayQuery &query, double tolerance, ppm_hit &hit) const override;
+
+    const std::vector<BezierPatch> &world_patches() const { return world_; }
+
+    struct SubPatch {
+        BezierPatch patch;  // world space
+        double u0, u1, v0, v1; // its domain in the original patch
+        uint32_t patch_index;
+    };
+    struct Data {
+        std::vector<SubPatch> sub_patches;
+        EmbreeFrame frame;
+    };
+
+private:
+    std::vector<BezierPatch> source_;
+    std::vector<BezierPatch> world_;
+    Data data_;
+};
+
+} // namespace ppm

@@ -1,0 +1,304 @@
+#include "geometry/patch_intersector.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+
+namespace ppm {
+
+RayFrame RayFrame::from_ray(const Vec3 &org, const Vec3 &dir) {
+    RayFrame f;
+    f.org = org;
+    f.dir_length = length(dir);
+    f.axis = dir / f.dir_length;
+    orthonormal_basis(f.axis, f.e1, f.e2);
+    return f;
+}
+
+namespace {
+
+// Control points in ray space, structure of arrays; index i * 4 + j as in BezierPatch.
+struct Projected {
+    double x[16], y[16], z[16];
+};
+
+// A region [a0, a1] x [b0, b1] of the input patch with its own control points.
+struct Region {
+    Projected cp;
+    double a0, a1, b0, b1;
+};
+
+struct Bounds2 {
+    double xmin, xmax, ymin, ymax, zmin, zmax;
+};
+
+Bounds2 bounds_of(const Projected &p) {
+    Bounds2 b{p.x[0], p.x[0], p.y[0], p.y[0], p.z[0], p.z[0]};
+    for (int k = 1; k < 16; ++k) {
+        b.xmin = std::min(b.xmin, p.x[k]); b.xmax = std::max(b.xmax, p.x[k]);
+        b.ymin = std::min(b.ymin, p.y[k]); b.ymax = std::max(b.ymax, p.y[k]);
+        b.zmin = std::min(b.zmin, p.z[k]); b.zmax = std::max(b.zmax, p.z[k]);
+    }
+    return b;
+}
+
+// Value and first derivatives of (x, y, z) at (a, b) in the region's own [0, 1]^2.
+struct Jet {
+    double x, y, z, xa, xb, ya, yb, za, zb;
+};
+
+Jet evaluate_jet(const Projected &p, double a, double b) {
+    double ba[4], bb[4], da[4], db[4];
+    bernstein3(a, ba);
+    bernstein3(b, bb);
+    bernstein3_derivative(a, da);
+    bernstein3_derivative(b, db);
+    Jet r{};
+    for (int i = 0; i < 4; ++i) {
+        double rx = 0, ry = 0, rz = 0, rxa = 0, rya = 0, rza = 0;
+        for (int j = 0; j < 4; ++j) {
+            const int k = i * 4 + j;
+            rx += ba[j] * p.x[k]; ry += ba[j] * p.y[k]; rz += ba[j] * p.z[k];
+            rxa += da[j] * p.x[k]; rya += da[j] * p.y[k]; rza += da[j] * p.z[k];
+        }
+        r.x += bb[i] * rx; r.y += bb[i] * ry; r.z += bb[i] * rz;
+        r.xa += bb[i] * rxa; r.ya += bb[i] * rya; r.za += bb[i] * rza;
+        r.xb += db[i] * rx; r.yb += db[i] * ry; r.zb += db[i] * rz;
+    }
+    return r;
+}
+
+void split_a(const Projected &p, double t, Projected &left, Projected &right) {
+    for (int i = 0; i < 4; ++i) {
+        de_casteljau_split(&p.x[i * 4], 1, t, &left.x[i * 4], &right.x[i * 4]);
+        de_casteljau_split(&p.y[i * 4], 1, t, &left.y[i * 4], &right.y[i * 4]);
+        de_casteljau_split(&p.z[i * 4], 1, t, &left.z[i * 4], &right.z[i * 4]);
+    }
+}
+
+void split_b(const Projected &p, double t, Projected &left, Projected &right) {
+    for (int j = 0; j < 4; ++j) {
+        de_casteljau_split(&p.x[j], 4, t, &left.x[j], &right.x[j]);
+        de_casteljau_split(&p.y[j], 4, t, &left.y[j], &right.y[j]);
+        de_casteljau_split(&p.z[j], 4, t, &left.z[j], &right.z[j]);
+    }
+}
+
+// Ray-space length of the control net along a (rows) and along b (columns): decides which
+// parameter to split so that regions shrink evenly in ray space.
+void net_lengths(const Projected &p, double &along_a, double &along_b) {
+    along_a = along_b = 0;
+    for (int i = 0; i < 4; ++i) {
+        const int k0 = i * 4, k3 = i * 4 + 3;
+        along_a = std::max(along_a, std::fabs(p.x[k3] - p.x[k0]) + std::fabs(p.y[k3] - p.y[k0]) +
+                                        std::fabs(p.z[k3] - p.z[k0]));
+        const int c0 = i, c3 = 12 + i;
+        along_b = std::max(along_b, std::fabs(p.x[c3] - p.x[c0]) + std::fabs(p.y[c3] - p.y[c0]) +
+                                        std::fabs(p.z[c3] - p.z[c0]));
+    }
+}
+
+enum class Krawczyk { no_root, unique_root, undecided };
+
+struct Interval {
+    double lo, hi;
+};
+
+// Hull of the derivative control points of one coordinate: encloses d/da (or d/db) of that
+// coordinate over the whole region.
+Interval derivative_hull_a(const double *c) {
+    Interval r{INFINITY, -INFINITY};
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 3; ++j) {
+            const double d = 3.0 * (c[i * 4 + j + 1] - c[i * 4 + j]);
+            r.lo = std::min(r.lo, d); r.hi = std::max(r.hi, d);
+        }
+    return r;
+}
+Interval derivative_hull_b(const double *c) {
+    Interval r{INFINITY, -INFINITY};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 4; ++j) {
+            const double d = 3.0 * (c[(i + 1) * 4 + j] - c[i * 4 + j]);
+            r.lo = std::min(r.lo, d); r.hi = std::max(r.hi, d);
+        }
+    return r;
+}
+
+// Interval of y * [i.lo, i.hi] for a point value y.
+Interval scale(double y, Interval i) {
+    const double p = y * i.lo, q = y * i.hi;
+    return {std::min(p, q), std::max(p, q)};
+}
+
+// Krawczyk operator on the region's [0, 1]^2 with midpoint c = (1/2, 1/2) and the
+// preconditioner Y = J(c)^-1:  K = c - Y F(c) + (I - Y J([0,1]^2)) ([0,1]^2 - c).
+// K disjoint from the box proves there is no root; K inside the box's interior proves exactly
+// one root. `start` receives c - Y F(c), a Newton step from the centre.
+Krawczyk krawczyk_test(const Projected &p, double &start_a, double &start_b) {
+    const Jet c = evaluate_jet(p, 0.5, 0.5);
+    const double det = c.xa * c.yb - c.xb * c.ya;
+    const double jnorm = std::fabs(c.xa) + std::fabs(c.xb) + std::fabs(c.ya) + std::fabs(c.yb);
+    if (!(std::fabs(det) > 1e-14 * jnorm * jnorm)) return Krawczyk::undecided;
+    const double y00 = c.yb / det, y01 = -c.xb / det, y10 = -c.ya / det, y11 = c.xa / det;
+    const double step_a = y00 * c.x + y01 * c.y, step_b = y10 * c.x + y11 * c.y;
+
+    const Interval xa = derivative_hull_a(p.x), xb = derivative_hull_b(p.x);
+    const Interval ya = derivative_hull_a(p.y), yb = derivative_hull_b(p.y);
+    // Row k of M = I - Y J: M_k0 = d_k0 - (Y_k0 xa + Y_k1 ya), M_k1 = d_k1 - (Y_k0 xb + Y_k1 yb).
+    auto magnitude = [](double identity, Interval u, Interval v) {
+        const double lo = identity - (u.hi + v.hi), hi = identity - (u.lo + v.lo);
+        return std::max(std::fabs(lo), std::fabs(hi));
+    };
+    const double r0 = 0.5 * (magnitude(1.0, scale(y00, xa), scale(y01, ya)) +
+                             magnitude(0.0, scale(y00, xb), scale(y01, yb)));
+    const double r1 = 0.5 * (magnitude(0.0, scale(y10, xa), scale(y11, ya)) +
+                             magnitude(1.0, scale(y10, xb), scale(y11, yb)));
+    if (!std::isfinite(r0 + r1 + step_a + step_b)) return Krawczyk::undecided;
+
+    // Inflate by a rounding margin: the interval arithmetic above is not outward rounded.
+    const double margin = 1e-12;
+    const double k0lo = 0.5 - step_a - r0 - margin, k0hi = 0.5 - step_a + r0 + margin;
+    const double k1lo = 0.5 - step_b - r1 - margin, k1hi = 0.5 - step_b + r1 + margin;
+    start_a = 0.5 - step_a;
+    start_b = 0.5 - step_b;
+    if (k0hi < 0.0 || k0lo > 1.0 || k1hi < 0.0 || k1lo > 1.0) return Krawczyk::no_root;
+    if (k0lo > 0.0 && k0hi < 1.0 && k1lo > 0.0 && k1hi < 1.0) return Krawczyk::unique_root;
+    return Krawczyk::undecided;
+}
+
+struct Solver {
+    const Projected &top;     // the whole input patch in ray space: Newton evaluates here
+    double residual_converged; // |x|, |y| at or below this count as zero
+    double depth_converged;    // a last step that moved z less than this means converged
+
+    // Guarded Newton on x = y = 0 over the input patch, starting at (a, b), accepting only a
+    // root inside [a0, a1] x [b0, b1] (plus a rounding margin). Returns false on a singular
+    // Jacobian, NaN, leaving the region's neighbourhood, or no convergence.
+    bool newton(double a, double b, const Region &r, double &root_a, double &root_b,
+                double &distance) const {
+        const double wa = r.a1 - r.a0, wb = r.b1 - r.b0;
+        double last_step_z = INFINITY;
+        for (int iteration = 0; iteration < 16; ++iteration) {
+            const Jet j = evaluate_jet(top, a, b);
+            if (std::max(std::fabs(j.x), std::fabs(j.y)) <= residual_converged &&
+                last_step_z <= depth_converged) {
+                const double margin_a = 1e-9 * wa + 4 * DBL_EPSILON;
+                const double margin_b = 1e-9 * wb + 4 * DBL_EPSILON;
+                if (a < r.a0 - margin_a || a > r.a1 + margin_a || b < r.b0 - margin_b ||
+                    b > r.b1 + margin_b)
+                    return false; // a root of another region: it is found there
+                root_a = std::clamp(a, 0.0, 1.0);
+                root_b = std::clamp(b, 0.0, 1.0);
+                distance = j.z;
+                return true;
+            }
+            const double det = j.xa * j.yb - j.xb * j.ya;
+            if (!(std::fabs(det) > 0) || !std::isfinite(det)) return false;
+            const double da = (j.xb * j.y - j.yb * j.x) / det;
+            const double db = (j.ya * j.x - j.xa * j.y) / det;
+            last_step_z = std::fabs(j.za * da + j.zb * db);
+            a += da;
+            b += db;
+            // Newton may overshoot a little on its way; far outside the region it is lost.
+            if (!(a >= r.a0 - 0.5 * wa && a <= r.a1 + 0.5 * wa && b >= r.b0 - 0.5 * wb &&
+                  b <= r.b1 + 0.5 * wb))
+                return false; // also catches NaN
+        }
+        return false;
+    }
+};
+
+} // namespace
+
+bool intersect_patch(const BezierPatch &patch, const RayFrame &ray, const PatchRootQuery &query,
+                     PatchRoot &root) {
+    Region stack[160]; // depth-first: one entry per level, at most ~100 levels
+    int top_index = 0;
+    Region &first = stack[top_index++];
+    double magnitude = 0;
+    for (int k = 0; k < 16; ++k) {
+        const Vec3 q = patch.p[k] - ray.org;
+        first.cp.x[k] = dot(q, ray.e1);
+        first.cp.y[k] = dot(q, ray.e2);
+        first.cp.z[k] = dot(q, ray.axis);
+        magnitude = std::max(magnitude, max_abs_component(q));
+    }
+    first.a0 = first.b0 = 0;
+    first.a1 = first.b1 = 1;
+    const Projected top = first.cp;
+
+    // Projection and De Casteljau each add a few ulps of the coordinates' magnitude.
+    const double noise = 64 * DBL_EPSILON * magnitude;
+    const double point_size = std::max(query.tolerance, 16 * noise);
+    const Solver solver{top, std::max(noise, 1e-4 * query.tolerance), 0.1 * point_size};
+    const double znear = query.tnear * ray.dir_length;
+    double zbest = query.tfar * ray.dir_length;
+    bool found = false;
+
+    auto accept = [&](double a, double b, double z) {
+        if (!(z >= znear && z <= zbest)) return false;
+        zbest = z;
+        root.t = z / ray.dir_length;
+        root.a = a;
+        root.b = b;
+        found = true;
+        return true;
+    };
+
+    while (top_index > 0) {
+        const Region r = stack[--top_index];
+        const Bounds2 box = bounds_of(r.cp);
+        if (box.xmin > noise || box.xmax < -noise || box.ymin > noise || box.ymax < -noise) continue;
+        if (box.zmax < znear - noise || box.zmin > zbest + noise) continue;
+
+        const double extent = std::max({box.xmax - box.xmin, box.ymax - box.ymin, box.zmax - box.zmin});
+        const double wa = r.a1 - r.a0, wb = r.b1 - r.b0;
+        const double ca = r.a0 + 0.5 * wa, cb = r.b0 + 0.5 * wb;
+        // Below the tolerance (or at the limit of the parameters' precision) the region is a
+        // point on the surface within the tolerance of the ray.
+        if (extent <= point_size || (wa <= 1e-15 && wb <= 1e-15)) {
+            double a, b, z;
+            if (!solver.newton(ca, cb, r, a, b, z)) {
+                a = ca;
+                b = cb;
+                z = evaluate_jet(top, ca, cb).z;
+            }
+            if (accept(a, b, z) && query.any_hit) return true;
+            continue;
+        }
+
+        double start_a, start_b;
+        const Krawczyk verdict = krawczyk_test(r.cp, start_a, start_b);
+        if (verdict == Krawczyk::no_root) continue;
+        if (verdict == Krawczyk::unique_root) {
+            double a, b, z;
+            if (solver.newton(r.a0 + start_a * wa, r.b0 + start_b * wb, r, a, b, z)) {
+                if (accept(a, b, z) && query.any_hit) return true;
+                continue;
+            }
+        }
+
+        double along_a, along_b;
+        net_lengths(r.cp, along_a, along_b);
+        const bool cut_a = wb <= 1e-15 || (wa > 1e-15 && along_a >= along_b);
+        Region near_child, far_child;
+        if (cut_a) {
+            split_a(r.cp, 0.5, near_child.cp, far_child.cp);
+            near_child.a0 = r.a0; near_child.a1 = ca; far_child.a0 = ca; far_child.a1 = r.a1;
+            near_child.b0 = far_child.b0 = r.b0; near_child.b1 = far_child.b1 = r.b1;
+        } else {
+            split_b(r.cp, 0.5, near_child.cp, far_child.cp);
+            near_child.b0 = r.b0; near_child.b1 = cb; far_child.b0 = cb; far_child.b1 = r.b1;
+            near_child.a0 = far_child.a0 = r.a0; near_child.a1 = far_child.a1 = r.a1;
+        }
+        const double near_z = *std::min_element(near_child.cp.z, near_child.cp.z + 16);
+        const double far_z = *std::min_element(far_child.cp.z, far_child.cp.z + 16);
+        if (near_z > far_z) std::swap(near_child, far_child);
+        stack[top_index++] = far_child;
+        stack[top_index++] = near_child;
+    }
+    return found;
+}
+
+} // namespace ppm

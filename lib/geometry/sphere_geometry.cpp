@@ -1,0 +1,90 @@
+#include "geometry/sphere_geometry.h"
+
+#include "core/error.h"
+#include "scene/user_geometry.h"
+
+#include <cfloat>
+
+namespace ppm {
+
+namespace {
+
+// Roots of |org + t dir - c|^2 = r^2 in the cancellation-free form of "Precision Improvements
+// for Ray/Sphere Intersection" (Haines et al., Ray Tracing Gems, ch. 7).
+bool test_sphere(const SphereGeometry::Data &s, unsigned, RayQuery &query) {
+    const Vec3 f = query.org - s.center;
+    const double a = dot(query.dir, query.dir);
+    const double b = dot(f, query.dir);
+    const Vec3 l = f - query.dir * (b / a);
+    const double disc = a * (s.radius * s.radius - dot(l, l));
+    if (!(disc >= 0)) return false;
+    const double c = dot(f, f) - s.radius * s.radius;
+    const double q = -(b + std::copysign(std::sqrt(disc), b));
+    double t0 = q / a, t1 = q != 0 ? c / q : t0;
+    if (t0 > t1) std::swap(t0, t1);
+    for (double t : {t0, t1})
+        if (t >= query.tnear && t <= query.hit.t) {
+            query.record(t, 0, 0, 0);
+            return true;
+        }
+    return false;
+}
+
+void sphere_bounds(const RTCBoundsFunctionArguments *args) {
+    const auto &s = *static_cast<const SphereGeometry::Data *>(args->geometryUserPtr);
+    Box3 box;
+    box.extend(s.center - Vec3{1, 1, 1} * s.radius);
+    box.extend(s.center + Vec3{1, 1, 1} * s.radius);
+    write_embree_bounds(box, s.frame, *args->bounds_o);
+}
+
+} // namespace
+
+SphereGeometry::SphereGeometry(const Vec3 &center, double radius)
+    : source_center_(center), source_radius_(radius) {}
+
+void SphereGeometry::check_transform(const Affine &transform) const {
+    const Vec3 x = transform.vector({1, 0, 0}), y = transform.vector({0, 1, 0}),
+               z = transform.vector({0, 0, 1});
+    const double lx = length(x), ly = length(y), lz = length(z);
+    const double tolerance = 1e-9 * std::max({lx, ly, lz});
+    if (std::fabs(lx - ly) > tolerance || std::fabs(lx - lz) > tolerance ||
+        std::fabs(dot(x, y)) > tolerance * lx || std::fabs(dot(y, z)) > tolerance * ly ||
+        std::fabs(dot(x, z)) > tolerance * lx)
+        invalid_argument("a sphere takes only rotations, translations and uniform scaling");
+}
+
+Box3 SphereGeometry::prepare(const Affine &transform) {
+    data_.center = transform.point(source_center_);
+    const Vec3 x = transform.vector({1, 0, 0});
+    data_.radius = source_radius_ * length(x);
+    data_.axis[0] = normalize(x);
+    data_.axis[1] = normalize(transform.vector({0, 1, 0}));
+    data_.axis[2] = normalize(transform.vector({0, 0, 1}));
+    Box3 box;
+    box.extend(data_.center - Vec3{1, 1, 1} * data_.radius);
+    box.extend(data_.center + Vec3{1, 1, 1} * data_.radius);
+    return box;
+}
+
+RTCGeometry SphereGeometry::create_embree(RTCDevice device, const EmbreeFrame &frame) {
+    data_.frame = frame;
+    return new_user_geometry<Data, test_sphere>(device, data_, 1, sphere_bounds);
+}
+
+void SphereGeometry::describe_hit(const RayQuery &query, double tolerance, ppm_hit &hit) const {
+    const Vec3 along = query.org + query.dir * query.hit.t - data_.center;
+    const Vec3 n = normalize(along);
+    const Vec3 p = data_.center + n * data_.radius; // back onto the sphere
+    p.store(hit.p);
+    n.store(hit.ng);
+    n.store(hit.ns);
+    const double lx = dot(n, data_.axis[0]), ly = dot(n, data_.axis[1]), lz = dot(n, data_.axis[2]);
+    double phi = std::atan2(ly, lx);
+    if (phi < 0) phi += 2 * M_PI;
+    hit.u = phi / (2 * M_PI);
+    hit.v = std::acos(std::clamp(lz, -1.0, 1.0)) / M_PI;
+    hit.p_error = tolerance + 32 * DBL_EPSILON * (max_abs_component(data_.center) + data_.radius);
+}
+
+} // namespace ppm

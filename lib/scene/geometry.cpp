@@ -1,0 +1,17 @@
+#include "scene/geometry.h"
+
+namespace ppm {
+
+void write_embree_bounds(const Box3 &world, const EmbreeFrame &frame, RTCBounds &out) {
+    const Vec3 lower = world.lower - frame.center - Vec3{1, 1, 1} * frame.box_padding;
+    const Vec3 upper = world.upper - frame.center + Vec3{1, 1, 1} * frame.box_padding;
+    // Round outwards: a box that shrank in the conversion could lose a grazing hit.
+    out.lower_x = std::nextafter(static_cast<float>(lower.x), -INFINITY);
+    out.lower_y = std::nextafter(static_cast<float>(lower.y), -INFINITY);
+    out.lower_z = std::nextafter(static_cast<float>(lower.z), -INFINITY);
+    out.upper_x = std::nextafter(static_cast<float>(upper.x), INFINITY);
+    out.upper_y = std::nextafter(static_cast<float>(upper.y), INFINITY);
+    out.upper_z = std::nextafter(static_cast<float>(upper.z), INFINITY);
+}
+
+} // namespace ppm

@@ -1,0 +1,51 @@
+// A geometry of a scene: the user's data as added, turned into world-space data and an Embree
+// geometry at commit, and the final hit description (point, normals) on request.
+#pragma once
+
+#include <ppm/ppm.h>
+
+#include "math/vec3.h"
+#include "scene/ray_query.h"
+
+#include <embree3/rtcore.h>
+
+#include <cstddef>
+#include <string>
+
+namespace ppm {
+
+// Embree works in single precision around the scene centre: Embree coordinates are world
+// coordinates minus `center`. User-geometry boxes are padded by `box_padding` so that the
+// float ray Embree traverses never misses a box the double ray enters.
+struct EmbreeFrame {
+    Vec3 center;
+    double box_padding = 0;
+    double tolerance = 0; // absolute hit tolerance of the scene
+};
+
+class Geometry {
+public:
+    virtual ~Geometry() = default;
+
+    virtual const char *kind() const = 0;
+    virtual size_t primitive_count() const = 0;
+
+    // Throws INVALID_ARGUMENT (naming the geometry) if this kind cannot take the transform.
+    virtual void check_transform(const Affine &transform) const { (void)transform; }
+
+    // Commit, step 1: applies the transform to the stored data; returns world bounds.
+    virtual Box3 prepare(const Affine &transform) = 0;
+    // Commit, step 2: a new Embree geometry (committed, not attached) for the prepared data.
+    virtual RTCGeometry create_embree(RTCDevice device, const EmbreeFrame &frame) = 0;
+
+    // Fills p, p_error, ng and ns of a hit from its t/u/v/prim_id.
+    virtual void describe_hit(const RayQuery &query, double tolerance, ppm_hit &hit) const = 0;
+
+    Affine transform;
+    uint32_t material = 0;
+};
+
+// Pads a box so Embree's single-precision traversal keeps it (see EmbreeFrame).
+void write_embree_bounds(const Box3 &world, const EmbreeFrame &frame, RTCBounds &out);
+
+} // namespace ppm

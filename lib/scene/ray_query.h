@@ -1,0 +1,67 @@
+// One ray's state during an Embree traversal. Embree's ray is single precision; the exact
+// double ray and the best double hit so far live here, in an extension of
+// RTCIntersectContext that every callback casts back to.
+#pragma once
+
+#include "geometry/patch_intersector.h"
+#include "math/vec3.h"
+
+#include <embree3/rtcore.h>
+
+#include <cmath>
+#include <cstdint>
+
+namespace ppm {
+
+struct HitRecord {
+    double t = INFINITY;
+    double u = 0, v = 0;
+    uint32_t geom_id = 0xFFFFFFFFu;
+    uint32_t prim_id = 0;
+};
+
+struct RayQuery {
+    RTCIntersectContext embree; // first member: Embree hands back a pointer to it
+
+    Vec3 org, dir;        // the double ray, world space
+    double tnear = 0;     // accepted hits: t in [tnear, hit.t]
+    double t_shift = 0;   // Embree's ray starts at org + t_shift * dir ...
+    double dir_length = 1; // ... and runs along dir / |dir|: t = t_shift + t_embree / |dir|
+    double tolerance = 0; // absolute, from the scene
+    bool any_hit = false;
+    bool found = false;
+    HitRecord hit;        // best hit so far; hit.t is the current far limit
+
+    // The ray frame for patches, built on first use.
+    const RayFrame &frame() {
+        if (!frame_ready_) {
+            frame_ = RayFrame::from_ray(org, dir);
+            frame_ready_ = true;
+        }
+        return frame_;
+    }
+
+    static RayQuery &of(RTCIntersectContext *context) {
+        return *reinterpret_cast<RayQuery *>(context);
+    }
+
+    // Records a hit known to lie in [tnear, hit.t]; the caller sets hit.geom_id.
+    void record(double t, double u, double v, uint32_t prim_id) {
+        hit.t = t;
+        hit.u = u;
+        hit.v = v;
+        hit.prim_id = prim_id;
+        found = true;
+    }
+
+    // Embree's far limit for a double t: rounded up so that no box at t is culled.
+    float embree_tfar(double t) const {
+        return std::nextafter(static_cast<float>((t - t_shift) * dir_length), INFINITY);
+    }
+
+private:
+    RayFrame frame_;
+    bool frame_ready_ = false;
+};
+
+} // namespace ppm

@@ -1,0 +1,234 @@
+#include "scene/scene.h"
+
+#include "core/error.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cfloat>
+#include <cstring>
+
+namespace ppm {
+
+namespace {
+
+// Batches smaller than this are traced on the calling thread: waking workers costs more.
+constexpr size_t parallel_batch_threshold = 256;
+constexpr size_t rays_per_task = 64;
+
+void write_miss(ppm_hit &hit) {
+    std::memset(&hit, 0, sizeof hit);
+    hit.t = INFINITY;
+    hit.geom_id = PPM_INVALID_ID;
+    hit.prim_id = PPM_INVALID_ID;
+}
+
+} // namespace
+
+void validate_ray(const ppm_ray &ray, size_t index) {
+    auto bad = [&](const char *what) {
+        invalid_argument("ray " + std::to_string(index) + ": " + what);
+    };
+    const Vec3 org = Vec3::from(ray.org), dir = Vec3::from(ray.dir);
+    if (!is_finite(org)) bad("origin is not finite");
+    if (!is_finite(dir)) bad("direction is not finite");
+    const double dir_length2 = length2(dir);
+    if (!(dir_length2 >= DBL_MIN) || !std::isfinite(dir_length2))
+        bad("direction is zero or too large to square");
+    if (!(ray.tnear >= 0) || !std::isfinite(ray.tnear)) bad("tnear must be finite and >= 0");
+    if (!(ray.tfar >= ray.tnear)) bad("tfar must be >= tnear (INFINITY allowed)");
+}
+
+Scene::Scene(Context &context) : context_(&context) { context_->retain(); }
+
+Scene::~Scene() {
+    if (rtc_scene_) rtcReleaseScene(rtc_scene_);
+    geometries_.clear();
+    context_->release();
+}
+
+uint32_t Scene::add(std::unique_ptr<Geometry> geometry) {
+    if (geometries_.size() >= PPM_INVALID_ID - 1) invalid_argument("too many geometries in a scene");
+    geometries_.push_back(std::move(geometry));
+    committed_ = false;
+    return static_cast<uint32_t>(geometries_.size() - 1);
+}
+
+Geometry &Scene::geometry(uint32_t geom_id) const {
+    if (geom_id >= geometries_.size())
+        invalid_argument("geom_id " + std::to_string(geom_id) + " does not exist (the scene has " +
+                         std::to_string(geometries_.size()) + " geometries)");
+    return *geometries_[geom_id];
+}
+
+void Scene::set_tolerance(double relative) {
+    if (!(relative >= 1e-13 && relative <= 1e-2))
+        invalid_argument("tolerance " + format_number(relative) + " is outside [1e-13, 1e-2]");
+    tolerance_ = relative;
+    committed_ = false;
+}
+
+void Scene::commit() {
+    if (geometries_.empty()) fail(PPM_ERROR_INVALID_OPERATION, "cannot commit a scene without geometry");
+    if (rtc_scene_) {
+        rtcReleaseScene(rtc_scene_);
+        rtc_scene_ = nullptr;
+    }
+    committed_ = false;
+
+    Box3 bounds;
+    for (auto &geometry : geometries_) bounds.extend(geometry->prepare(geometry->transform));
+    const double diagonal = bounds.diagonal();
+    if (!(diagonal > 0) || !std::isfinite(diagonal))
+        invalid_argument("the scene's bounding box is empty, a point, or not finite");
+
+    const Vec3 center = bounds.center();
+    const double radius = std::max(max_abs_component(bounds.lower - center),
+                                   max_abs_component(bounds.upper - center));
+    // Float rounding of Embree's ray moves it by about 1e-7 of the scene's size; pad boxes by
+    // a hundred times that, plus the tolerance within which a hit may be reported.
+    frame_.center = center;
+    frame_.tolerance = tolerance_ * diagonal;
+    frame_.box_padding = 1e-5 * radius + frame_.tolerance;
+
+    RTCDevice device = context_->device();
+    RTCScene rtc = rtcNewScene(device);
+    context_->check_embree("rtcNewScene");
+    rtcSetSceneFlags(rtc, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(rtc, RTC_BUILD_QUALITY_HIGH);
+    try {
+        for (size_t id = 0; id < geometries_.size(); ++id) {
+            RTCGeometry g = geometries_[id]->create_embree(device, frame_);
+            context_->check_embree("creating Embree geometry");
+            if (!g) fail(PPM_ERROR_OUT_OF_MEMORY, "creating Embree geometry failed");
+            rtcAttachGeometryByID(rtc, g, static_cast<unsigned>(id));
+            rtcReleaseGeometry(g);
+            context_->check_embree("rtcAttachGeometryByID");
+        }
+        context_->run([&] { rtcCommitScene(rtc); });
+        context_->check_embree("rtcCommitScene");
+    } catch (...) {
+        rtcReleaseScene(rtc);
+        throw;
+    }
+    rtc_scene_ = rtc;
+    bounds_ = bounds;
+    query_box_ = bounds;
+    query_box_.lower -= Vec3{1, 1, 1} * (2 * frame_.box_padding);
+    query_box_.upper += Vec3{1, 1, 1} * (2 * frame_.box_padding);
+    committed_ = true;
+}
+
+void Scene::require_committed(const char *operation) const {
+    if (!committed())
+        fail(PPM_ERROR_INVALID_OPERATION,
+             std::string(operation) + ": the scene is not committed (call ppm_scene_commit after changes)");
+}
+
+bool Scene::start_query(const ppm_ray &ray, bool any_hit, RayQuery &query, RTCRay &embree_ray) const {
+    rtcInitIntersectContext(&query.embree);
+    query.org = Vec3::from(ray.org);
+    query.dir = Vec3::from(ray.dir);
+    query.tnear = ray.tnear;
+    query.hit.t = ray.tfar;
+    query.tolerance = frame_.tolerance;
+    query.any_hit = any_hit;
+    query.dir_length = length(query.dir);
+
+    // Clip to the padded scene box in double, so Embree's float ray starts near the geometry
+    // and its rounding stays relative to the scene's size, not to the origin's distance.
+    double t0 = ray.tnear, t1 = ray.tfar;
+    for (int axis = 0; axis < 3; ++axis) {
+        const double o = query.org[axis], d = query.dir[axis];
+        const double lo = query_box_.lower[axis], hi = query_box_.upper[axis];
+        if (d == 0) {
+            if (o < lo || o > hi) return false;
+            continue;
+        }
+        double ta = (lo - o) / d, tb = (hi - o) / d;
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+    }
+    if (!(t0 <= t1)) return false;
+
+    query.t_shift = t0;
+    const Vec3 start = query.org + query.dir * t0 - frame_.center;
+    const Vec3 unit = query.dir / query.dir_length;
+    embree_ray.org_x = static_cast<float>(start.x);
+    embree_ray.org_y = static_cast<float>(start.y);
+    embree_ray.org_z = static_cast<float>(start.z);
+    embree_ray.dir_x = static_cast<float>(unit.x);
+    embree_ray.dir_y = static_cast<float>(unit.y);
+    embree_ray.dir_z = static_cast<float>(unit.z);
+    embree_ray.tnear = 0.0f;
+    embree_ray.tfar = query.embree_tfar(t1);
+    embree_ray.time = 0.0f;
+    embree_ray.mask = 0xFFFFFFFFu; // masks are enabled in Debian's Embree build
+    embree_ray.id = 0;
+    embree_ray.flags = 0;
+    return true;
+}
+
+void Scene::intersect(const ppm_ray &ray, ppm_hit &hit) const {
+    RayQuery query;
+    RTCRayHit rayhit;
+    if (!start_query(ray, false, query, rayhit.ray)) return write_miss(hit);
+    rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(rtc_scene_, &query.embree, &rayhit);
+    if (!query.found) return write_miss(hit);
+
+    write_miss(hit);
+    const Geometry &g = *geometries_[query.hit.geom_id];
+    hit.t = query.hit.t;
+    hit.u = query.hit.u;
+    hit.v = query.hit.v;
+    hit.geom_id = query.hit.geom_id;
+    hit.prim_id = query.hit.prim_id;
+    hit.material = g.material;
+    g.describe_hit(query, frame_.tolerance, hit);
+}
+
+bool Scene::occluded(const ppm_ray &ray) const {
+    RayQuery query;
+    RTCRay embree_ray;
+    if (!start_query(ray, true, query, embree_ray)) return false;
+    rtcOccluded1(rtc_scene_, &query.embree, &embree_ray);
+    return query.found;
+}
+
+void Scene::intersect(const ppm_ray *rays, size_t count, ppm_hit *hits) const {
+    require_committed("ppm_scene_intersect");
+    for (size_t i = 0; i < count; ++i) validate_ray(rays[i], i);
+    if (count < parallel_batch_threshold) {
+        for (size_t i = 0; i < count; ++i) intersect(rays[i], hits[i]);
+        return;
+    }
+    context_->run([&] {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, count, rays_per_task),
+                          [&](const tbb::blocked_range<size_t> &range) {
+                              for (size_t i = range.begin(); i != range.end(); ++i)
+                                  intersect(rays[i], hits[i]);
+                          });
+    });
+}
+
+void Scene::occluded(const ppm_ray *rays, size_t count, uint8_t *result) const {
+    require_committed("ppm_scene_occluded");
+    for (size_t i = 0; i < count; ++i) validate_ray(rays[i], i);
+    if (count < parallel_batch_threshold) {
+        for (size_t i = 0; i < count; ++i) result[i] = occluded(rays[i]) ? 1 : 0;
+        return;
+    }
+    context_->run([&] {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, count, rays_per_task),
+                          [&](const tbb::blocked_range<size_t> &range) {
+                              for (size_t i = range.begin(); i != range.end(); ++i)
+                                  result[i] = occluded(rays[i]) ? 1 : 0;
+                          });
+    });
+}
+
+} // namespace ppm

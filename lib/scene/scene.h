@@ -1,0 +1,64 @@
+// A scene: geometries as added, and after commit an Embree BVH over them plus the double
+// precision ray queries.
+#pragma once
+
+#include <ppm/ppm.h>
+
+#include "core/context.h"
+#include "scene/geometry.h"
+
+#include <memory>
+#include <vector>
+
+namespace ppm {
+
+class Scene : public RefCounted {
+public:
+    explicit Scene(Context &context);
+    ~Scene() override;
+
+    Context &context() const { return *context_; }
+
+    uint32_t add(std::unique_ptr<Geometry> geometry);
+    Geometry &geometry(uint32_t geom_id) const; // throws INVALID_ARGUMENT for a bad id
+    size_t geometry_count() const { return geometries_.size(); }
+
+    void set_tolerance(double relative);
+    double tolerance() const { return tolerance_; }
+
+    void commit();
+    bool committed() const { return rtc_scene_ != nullptr && committed_; }
+    const Box3 &bounds() const { return bounds_; }
+    double absolute_tolerance() const { return frame_.tolerance; }
+
+    // Single-ray queries on a committed scene; the ray must be valid (see validate_ray).
+    void intersect(const ppm_ray &ray, ppm_hit &hit) const;
+    bool occluded(const ppm_ray &ray) const;
+
+    // Batch queries: validate all rays, then run on the context's threads.
+    void intersect(const ppm_ray *rays, size_t count, ppm_hit *hits) const;
+    void occluded(const ppm_ray *rays, size_t count, uint8_t *occluded) const;
+
+    void mark_modified() { committed_ = false; }
+
+private:
+    // Sets up the query and Embree's float ray; false if the ray misses the scene's box.
+    bool start_query(const ppm_ray &ray, bool any_hit, RayQuery &query, RTCRay &embree_ray) const;
+    void require_committed(const char *operation) const;
+
+    Context *context_;
+    std::vector<std::unique_ptr<Geometry>> geometries_;
+    double tolerance_ = 1e-9;
+
+    RTCScene rtc_scene_ = nullptr;
+    bool committed_ = false;
+    Box3 bounds_;
+    Box3 query_box_; // bounds plus padding: rays are clipped to it before Embree sees them
+    EmbreeFrame frame_;
+};
+
+// Throws INVALID_ARGUMENT naming `index` if the ray has NaN/Inf, a zero direction, or a bad
+// [tnear, tfar].
+void validate_ray(const ppm_ray &ray, size_t index);
+
+} // namespace ppm

@@ -1,0 +1,31 @@
+/* Helpers shared by the cmocka tests. */
+#ifndef PPM_TEST_SUPPORT_H
+#define PPM_TEST_SUPPORT_H
+
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Deterministic random numbers (splitmix64) so failures reproduce. */
+typedef struct test_rng {
+    uint64_t state;
+} test_rng;
+double test_rng_uniform(test_rng *rng); /* [0, 1) */
+
+/* Asserts |a - b| <= tolerance with a message naming both values. */
+#define assert_close(a, b, tolerance) \
+    _assert_close((double)(a), (double)(b), (double)(tolerance), #a, #b, __FILE__, __LINE__)
+void _assert_close(double a, double b, double tolerance, const char *a_text, const char *b_text,
+                   const char *file, int line);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
