@@ -6,11 +6,13 @@
 #include <stddef.h>
 #include <setjmp.h>
 #include <stdint.h>
-#include <cmocka.h>
 
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* cmocka 1.1.5's header has no C++ guards of its own. */
+#include <cmocka.h>
 
 /* Deterministic random numbers (splitmix64) so failures reproduce. */
 typedef struct test_rng {
