@@ -6,7 +6,7 @@ namespace ppm {
 
 namespace {
 
-Vec3 tensor_sum(const BezierPatch &patch, const double bu[4], const double bv[4]) {
+inline Vec3 tensor_sum(const BezierPatch &patch, const double bu[4], const double bv[4]) {
     Vec3 sum;
     for (int i = 0; i < 4; ++i) {
         Vec3 row = patch.at(i, 0) * bu[0] + patch.at(i, 1) * bu[1] + patch.at(i, 2) * bu[2] +
@@ -14,13 +14,6 @@ Vec3 tensor_sum(const BezierPatch &patch, const double bu[4], const double bv[4]
         sum += row * bv[i];
     }
     return sum;
-}
-
-// Largest distance between control points: the length scale below which a derivative
-// counts as vanished.
-double patch_scale(const BezierPatch &patch) {
-    const Box3 box = control_bounds(patch);
-    return box.diagonal();
 }
 
 } // namespace
@@ -49,7 +42,10 @@ Vec3 mixed_derivative(const BezierPatch &patch, double u, double v) {
 }
 
 Vec3 geometric_normal(const BezierPatch &patch, double u, double v) {
-    const double scale = patch_scale(patch);
+    return geometric_normal(patch, u, v, control_bounds(patch).diagonal());
+}
+
+Vec3 geometric_normal(const BezierPatch &patch, double u, double v, double scale) {
     if (!(scale > 0)) return {};
     // A derivative this small is rounding noise of a collapsed edge, not a tangent.
     const double vanish = 1e-10 * scale;
@@ -60,8 +56,8 @@ Vec3 geometric_normal(const BezierPatch &patch, double u, double v) {
         Vec3 tu = d.du, tv = d.dv;
         // Near a collapsed edge v = e, dS/du ~ (v - e) * d2S/dudv: the limit direction of
         // the cross product uses the twist vector, with the sign of (v - e).
-        if (length(tu) <= vanish) tu = mixed_derivative(patch, u, v) * (v < 0.5 ? 1.0 : -1.0);
-        if (length(tv) <= vanish) tv = mixed_derivative(patch, u, v) * (u < 0.5 ? 1.0 : -1.0);
+        if (length2(tu) <= vanish * vanish) tu = mixed_derivative(patch, u, v) * (v < 0.5 ? 1.0 : -1.0);
+        if (length2(tv) <= vanish * vanish) tv = mixed_derivative(patch, u, v) * (u < 0.5 ? 1.0 : -1.0);
         const Vec3 n = cross(tu, tv);
         const double len = length(n);
         if (len > vanish * vanish && std::isfinite(len)) return n / len;
@@ -82,12 +78,13 @@ void split_v(const BezierPatch &patch, double t, BezierPatch &left, BezierPatch 
 }
 
 BezierPatch sub_patch(const BezierPatch &patch, double u0, double u1, double v0, double v1) {
+    // Cut at u1 first, then at u0 inside [0, u1] (relative position u0 / u1). De Casteljau
+    // extrapolates just as well, so the interval may reach beyond [0, 1].
     BezierPatch a, b, c, d;
-    // Cut at u1 first, then at u0 inside [0, u1] (relative position u0 / u1).
-    if (u1 < 1.0) split_u(patch, u1, a, b); else a = patch;
-    if (u0 > 0.0) split_u(a, u0 / u1, b, c); else c = a;
-    if (v1 < 1.0) split_v(c, v1, a, b); else a = c;
-    if (v0 > 0.0) split_v(a, v0 / v1, b, d); else d = a;
+    if (u1 != 1.0) split_u(patch, u1, a, b); else a = patch;
+    if (u0 != 0.0) split_u(a, u0 / u1, b, c); else c = a;
+    if (v1 != 1.0) split_v(c, v1, a, b); else a = c;
+    if (v0 != 0.0) split_v(a, v0 / v1, b, d); else d = a;
     return d;
 }
 

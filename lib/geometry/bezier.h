@@ -56,12 +56,15 @@ Vec3 mixed_derivative(const BezierPatch &patch, double u, double v);
 // the other parameter. Returns the zero vector only for a patch that is a single point or a
 // curve everywhere.
 Vec3 geometric_normal(const BezierPatch &patch, double u, double v);
+// The same with the patch's size (diagonal of its control points) known.
+Vec3 geometric_normal(const BezierPatch &patch, double u, double v, double scale);
 
 // Splits at u = t (left: u in [0, t]) or at v = t (left: v in [0, t]).
 void split_u(const BezierPatch &patch, double t, BezierPatch &left, BezierPatch &right);
 void split_v(const BezierPatch &patch, double t, BezierPatch &left, BezierPatch &right);
 
-// The patch restricted to [u0, u1] x [v0, v1], reparametrised to [0, 1]^2.
+// The patch restricted to [u0, u1] x [v0, v1], reparametrised to [0, 1]^2. The interval may
+// extend beyond [0, 1] (the polynomial is extrapolated); u1 and v1 must be nonzero.
 BezierPatch sub_patch(const BezierPatch &patch, double u0, double u1, double v0, double v1);
 
 // Box of the control points, which contains the surface (convex hull property).

@@ -22,7 +22,7 @@ public:
     const std::vector<BezierPatch> &world_patches() const { return world_; }
 
     struct SubPatch {
-        BezierPatch patch;  // world space
+        BezierPatch patch;     // world space
         double u0, u1, v0, v1; // its domain in the original patch
         uint32_t patch_index;
     };
@@ -34,6 +34,8 @@ public:
 private:
     std::vector<BezierPatch> source_;
     std::vector<BezierPatch> world_;
+    std::vector<double> scale_;     // per world patch: diagonal of its control points
+    std::vector<double> magnitude_; // per world patch: largest absolute coordinate
     Data data_;
 };
 

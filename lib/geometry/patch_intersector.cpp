@@ -42,6 +42,26 @@ Bounds2 bounds_of(const Projected &p) {
     return b;
 }
 
+// Whether the projected patch misses the ray by a slab test along the normals of its two
+// mean chord directions: axis-aligned boxes of a thin sliver seen at an angle contain the ray
+// long before the sliver does, and every near miss would cost a subdivision.
+bool misses_chord_slabs(const Projected &p, double noise) {
+    const double du_x = (p.x[3] + p.x[15]) - (p.x[0] + p.x[12]), du_y = (p.y[3] + p.y[15]) - (p.y[0] + p.y[12]);
+    const double dv_x = (p.x[12] + p.x[15]) - (p.x[0] + p.x[3]), dv_y = (p.y[12] + p.y[15]) - (p.y[0] + p.y[3]);
+    const double normals[2][2] = {{-du_y, du_x}, {-dv_y, dv_x}};
+    for (const auto &n : normals) {
+        double lo = INFINITY, hi = -INFINITY;
+        for (int k = 0; k < 16; ++k) {
+            const double d = n[0] * p.x[k] + n[1] * p.y[k];
+            lo = std::min(lo, d);
+            hi = std::max(hi, d);
+        }
+        const double slack = noise * (std::fabs(n[0]) + std::fabs(n[1]));
+        if (lo > slack || hi < -slack) return true;
+    }
+    return false;
+}
+
 // Value and first derivatives of (x, y, z) at (a, b) in the region's own [0, 1]^2.
 struct Jet {
     double x, y, z, xa, xb, ya, yb, za, zb;
@@ -98,7 +118,14 @@ void net_lengths(const Projected &p, double &along_a, double &along_b) {
     }
 }
 
-enum class Krawczyk { no_root, unique_root, undecided };
+// What the interval test proves about the roots of (x, y) in a region.
+enum class Krawczyk {
+    no_root,          // K(X) misses X
+    one_root,         // K(X) inside X: exactly one root, Newton converges to it
+    at_most_one_root, // |I - Y J(X)| < 1: (x, y) is injective on X, so a root Newton finds
+                      // inside X is the only one there
+    undecided
+};
 
 struct Interval {
     double lo, hi;
@@ -134,7 +161,10 @@ Interval scale(double y, Interval i) {
 // Krawczyk operator on the region's [0, 1]^2 with midpoint c = (1/2, 1/2) and the
 // preconditioner Y = J(c)^-1:  K = c - Y F(c) + (I - Y J([0,1]^2)) ([0,1]^2 - c).
 // K disjoint from the box proves there is no root; K inside the box's interior proves exactly
-// one root. `start` receives c - Y F(c), a Newton step from the centre.
+// one root. Failing that, a contraction |I - Y J| < 1 (infinity norm) still proves that F is
+// injective on the box, which saves a split when the root sits near the box's edge (where K
+// sticks out of the box however small the box). `start` receives c - Y F(c), a Newton step
+// from the centre.
 Krawczyk krawczyk_test(const Projected &p, double &start_a, double &start_b) {
     const Jet c = evaluate_jet(p, 0.5, 0.5);
     const double det = c.xa * c.yb - c.xb * c.ya;
@@ -163,7 +193,9 @@ Krawczyk krawczyk_test(const Projected &p, double &start_a, double &start_b) {
     start_a = 0.5 - step_a;
     start_b = 0.5 - step_b;
     if (k0hi < 0.0 || k0lo > 1.0 || k1hi < 0.0 || k1lo > 1.0) return Krawczyk::no_root;
-    if (k0lo > 0.0 && k0hi < 1.0 && k1lo > 0.0 && k1hi < 1.0) return Krawczyk::unique_root;
+    if (k0lo > 0.0 && k0hi < 1.0 && k1lo > 0.0 && k1hi < 1.0) return Krawczyk::one_root;
+    // r_k is half the row sum of |I - Y J|; stay clear of 1 for rounding.
+    if (std::max(r0, r1) + margin < 0.45) return Krawczyk::at_most_one_root;
     return Krawczyk::undecided;
 }
 
@@ -178,28 +210,29 @@ struct Solver {
     bool newton(double a, double b, const Region &r, double &root_a, double &root_b,
                 double &distance) const {
         const double wa = r.a1 - r.a0, wb = r.b1 - r.b0;
-        double last_step_z = INFINITY;
         for (int iteration = 0; iteration < 16; ++iteration) {
             const Jet j = evaluate_jet(top, a, b);
-            if (std::max(std::fabs(j.x), std::fabs(j.y)) <= residual_converged &&
-                last_step_z <= depth_converged) {
-                const double margin_a = 1e-9 * wa + 4 * DBL_EPSILON;
-                const double margin_b = 1e-9 * wb + 4 * DBL_EPSILON;
-                if (a < r.a0 - margin_a || a > r.a1 + margin_a || b < r.b0 - margin_b ||
-                    b > r.b1 + margin_b)
-                    return false; // a root of another region: it is found there
-                root_a = std::clamp(a, 0.0, 1.0);
-                root_b = std::clamp(b, 0.0, 1.0);
-                distance = j.z;
-                return true;
-            }
             const double det = j.xa * j.yb - j.xb * j.ya;
             if (!(std::fabs(det) > 0) || !std::isfinite(det)) return false;
             const double da = (j.xb * j.y - j.yb * j.x) / det;
             const double db = (j.ya * j.x - j.xa * j.y) / det;
-            last_step_z = std::fabs(j.za * da + j.zb * db);
+            const double step_z = j.za * da + j.zb * db;
             a += da;
             b += db;
+            // A step from a point whose residual is at rounding level, moving the depth by
+            // less than the tolerance, leaves an error of the order of its square: done.
+            if (std::max(std::fabs(j.x), std::fabs(j.y)) <= residual_converged &&
+                std::fabs(step_z) <= depth_converged) {
+                const double margin_a = 1e-9 * wa + 4 * DBL_EPSILON;
+                const double margin_b = 1e-9 * wb + 4 * DBL_EPSILON;
+                if (!(a >= r.a0 - margin_a && a <= r.a1 + margin_a && b >= r.b0 - margin_b &&
+                      b <= r.b1 + margin_b))
+                    return false; // a root of another region: it is found there
+                root_a = std::clamp(a, 0.0, 1.0);
+                root_b = std::clamp(b, 0.0, 1.0);
+                distance = j.z + step_z;
+                return true;
+            }
             // Newton may overshoot a little on its way; far outside the region it is lost.
             if (!(a >= r.a0 - 0.5 * wa && a <= r.a1 + 0.5 * wa && b >= r.b0 - 0.5 * wb &&
                   b <= r.b1 + 0.5 * wb))
@@ -251,6 +284,7 @@ bool intersect_patch(const BezierPatch &patch, const RayFrame &ray, const PatchR
         const Bounds2 box = bounds_of(r.cp);
         if (box.xmin > noise || box.xmax < -noise || box.ymin > noise || box.ymax < -noise) continue;
         if (box.zmax < znear - noise || box.zmin > zbest + noise) continue;
+        if (misses_chord_slabs(r.cp, noise)) continue;
 
         const double extent = std::max({box.xmax - box.xmin, box.ymax - box.ymin, box.zmax - box.zmin});
         const double wa = r.a1 - r.a0, wb = r.b1 - r.b0;
@@ -271,7 +305,7 @@ bool intersect_patch(const BezierPatch &patch, const RayFrame &ray, const PatchR
         double start_a, start_b;
         const Krawczyk verdict = krawczyk_test(r.cp, start_a, start_b);
         if (verdict == Krawczyk::no_root) continue;
-        if (verdict == Krawczyk::unique_root) {
+        if (verdict == Krawczyk::one_root || verdict == Krawczyk::at_most_one_root) {
             double a, b, z;
             if (solver.newton(r.a0 + start_a * wa, r.b0 + start_b * wb, r, a, b, z)) {
                 if (accept(a, b, z) && query.any_hit) return true;

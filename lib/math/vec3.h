@@ -34,14 +34,16 @@ inline Vec3 cross(const Vec3 &a, const Vec3 &b) {
 inline double length2(const Vec3 &v) { return dot(v, v); }
 inline double length(const Vec3 &v) { return std::sqrt(dot(v, v)); }
 inline Vec3 normalize(const Vec3 &v) { return v / length(v); }
+// std::min/max rather than fmin/fmax: these inline to single instructions, and coordinates
+// are checked to be finite where they enter the library.
 inline Vec3 vmin(const Vec3 &a, const Vec3 &b) {
-    return {std::fmin(a.x, b.x), std::fmin(a.y, b.y), std::fmin(a.z, b.z)};
+    return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)};
 }
 inline Vec3 vmax(const Vec3 &a, const Vec3 &b) {
-    return {std::fmax(a.x, b.x), std::fmax(a.y, b.y), std::fmax(a.z, b.z)};
+    return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)};
 }
 inline double max_abs_component(const Vec3 &v) {
-    return std::fmax(std::fabs(v.x), std::fmax(std::fabs(v.y), std::fabs(v.z)));
+    return std::max(std::fabs(v.x), std::max(std::fabs(v.y), std::fabs(v.z)));
 }
 inline bool is_finite(const Vec3 &v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
