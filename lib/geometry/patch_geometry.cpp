@@ -18,15 +18,43 @@ constexpr int presplit_per_edge = 12;
 // test proves it unique without subdividing.
 constexpr double search_margin = 0.1;
 
+// Cheap rejection before the patch math: Embree only tested a float box. Clip the ray to
+// the sub-patch's box in double and check that the clipped segment reaches the slab between
+// the sub-patch's bounding planes. Both are padded by the tolerance and rounding.
+bool segment_misses(const PatchGeometry::SubPatch &sub, const RayQuery &query) {
+    const double size = sub.box.diagonal();
+    const double pad = query.tolerance + 1e-12 * (size + max_abs_component(sub.box.lower) +
+                                                  max_abs_component(sub.box.upper));
+    double t0 = query.tnear, t1 = query.hit.t;
+    for (int axis = 0; axis < 3; ++axis) {
+        const double o = query.org[axis], d = query.dir[axis];
+        const double lo = sub.box.lower[axis] - pad, hi = sub.box.upper[axis] + pad;
+        if (d == 0) {
+            if (o < lo || o > hi) return true;
+            continue;
+        }
+        double ta = (lo - o) / d, tb = (hi - o) / d;
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+    }
+    if (!(t0 <= t1)) return true;
+    const double d0 = dot(sub.normal, query.org + query.dir * t0);
+    const double d1 = dot(sub.normal, query.org + query.dir * t1);
+    return (d0 < sub.slab_lo - pad && d1 < sub.slab_lo - pad) ||
+           (d0 > sub.slab_hi + pad && d1 > sub.slab_hi + pad);
+}
+
 bool test_sub_patch(const PatchGeometry::Data &data, unsigned prim, RayQuery &query) {
     const PatchGeometry::SubPatch &sub = data.sub_patches[prim];
+    if (segment_misses(sub, query)) return false;
     PatchRootQuery patch_query;
     patch_query.tnear = query.tnear;
     patch_query.tfar = query.hit.t;
     patch_query.tolerance = query.tolerance;
     patch_query.any_hit = query.any_hit;
     PatchRoot root;
-    if (!intersect_patch(sub.patch, query.frame(), patch_query, root)) return false;
+    if (!intersect_patch(sub.grid, query.frame(), patch_query, root)) return false;
     const double u = sub.u0 + root.a * (sub.u1 - sub.u0), v = sub.v0 + root.b * (sub.v1 - sub.v0);
     query.record(root.t, std::clamp(u, 0.0, 1.0), std::clamp(v, 0.0, 1.0), sub.patch_index);
     return true;
@@ -34,8 +62,32 @@ bool test_sub_patch(const PatchGeometry::Data &data, unsigned prim, RayQuery &qu
 
 void sub_patch_bounds(const RTCBoundsFunctionArguments *args) {
     const auto &data = *static_cast<const PatchGeometry::Data *>(args->geometryUserPtr);
-    write_embree_bounds(control_bounds(data.sub_patches[args->primID].patch), data.frame,
-                        *args->bounds_o);
+    write_embree_bounds(data.sub_patches[args->primID].box, data.frame, *args->bounds_o);
+}
+
+PatchGeometry::SubPatch make_sub_patch(const BezierPatch &patch, double u0, double u1, double v0,
+                                       double v1) {
+    const BezierPatch part = sub_patch(patch, u0, u1, v0, v1);
+    PatchGeometry::SubPatch sub;
+    sub.grid = ControlGrid::from(part);
+    sub.box = control_bounds(part);
+    sub.u0 = u0;
+    sub.u1 = u1;
+    sub.v0 = v0;
+    sub.v1 = v1;
+    // Normal of the plane spanned by the mean chords; any direction gives a valid slab, this
+    // one a thin slab for a nearly flat part.
+    const Vec3 along_u = (part.at(0, 3) + part.at(3, 3)) - (part.at(0, 0) + part.at(3, 0));
+    const Vec3 along_v = (part.at(3, 0) + part.at(3, 3)) - (part.at(0, 0) + part.at(0, 3));
+    const Vec3 n = cross(along_u, along_v);
+    sub.normal = length(n) > 0 ? normalize(n) : Vec3{0, 0, 1};
+    sub.slab_lo = INFINITY;
+    sub.slab_hi = -INFINITY;
+    for (const Vec3 &p : part.p) {
+        sub.slab_lo = std::min(sub.slab_lo, dot(sub.normal, p));
+        sub.slab_hi = std::max(sub.slab_hi, dot(sub.normal, p));
+    }
+    return sub;
 }
 
 } // namespace
@@ -66,8 +118,8 @@ Box3 PatchGeometry::prepare(const Affine &transform) {
             for (int j = 0; j < presplit_per_edge; ++j) {
                 const double u0 = j * step, u1 = (j + 1) * step;
                 const double v0 = i * step, v1 = (i + 1) * step;
-                data_.sub_patches.push_back({sub_patch(world_[index], u0, u1, v0, v1), u0, u1, v0,
-                                             v1, static_cast<uint32_t>(index)});
+                data_.sub_patches.push_back(make_sub_patch(world_[index], u0, u1, v0, v1));
+                data_.sub_patches.back().patch_index = static_cast<uint32_t>(index);
             }
     return bounds;
 }

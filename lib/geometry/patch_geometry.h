@@ -3,6 +3,7 @@
 #pragma once
 
 #include "geometry/bezier.h"
+#include "geometry/patch_intersector.h"
 #include "scene/geometry.h"
 
 #include <vector>
@@ -22,7 +23,10 @@ public:
     const std::vector<BezierPatch> &world_patches() const { return world_; }
 
     struct SubPatch {
-        BezierPatch patch;     // world space
+        ControlGrid grid;      // world space control points
+        Box3 box;              // their bounds
+        Vec3 normal;           // unit normal of a slab holding the control points ...
+        double slab_lo, slab_hi; // ... between these offsets along it (a "fat plane")
         double u0, u1, v0, v1; // its domain in the original patch
         uint32_t patch_index;
     };

@@ -1,5 +1,7 @@
 #include "geometry/patch_intersector.h"
 
+#include "math/min_max.h"
+
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -15,12 +17,20 @@ RayFrame RayFrame::from_ray(const Vec3 &org, const Vec3 &dir) {
     return f;
 }
 
+ControlGrid ControlGrid::from(const BezierPatch &patch) {
+    ControlGrid g;
+    for (int k = 0; k < 16; ++k) {
+        g.x[k] = patch.p[k].x;
+        g.y[k] = patch.p[k].y;
+        g.z[k] = patch.p[k].z;
+    }
+    return g;
+}
+
 namespace {
 
-// Control points in ray space, structure of arrays; index i * 4 + j as in BezierPatch.
-struct Projected {
-    double x[16], y[16], z[16];
-};
+// Control points in ray space.
+using Projected = ControlGrid;
 
 // A region [a0, a1] x [b0, b1] of the input patch with its own control points.
 struct Region {
@@ -33,12 +43,10 @@ struct Bounds2 {
 };
 
 Bounds2 bounds_of(const Projected &p) {
-    Bounds2 b{p.x[0], p.x[0], p.y[0], p.y[0], p.z[0], p.z[0]};
-    for (int k = 1; k < 16; ++k) {
-        b.xmin = std::min(b.xmin, p.x[k]); b.xmax = std::max(b.xmax, p.x[k]);
-        b.ymin = std::min(b.ymin, p.y[k]); b.ymax = std::max(b.ymax, p.y[k]);
-        b.zmin = std::min(b.zmin, p.z[k]); b.zmax = std::max(b.zmax, p.z[k]);
-    }
+    Bounds2 b;
+    min_max16(p.x, b.xmin, b.xmax);
+    min_max16(p.y, b.ymin, b.ymax);
+    min_max16(p.z, b.zmin, b.zmax);
     return b;
 }
 
@@ -73,6 +81,7 @@ Jet evaluate_jet(const Projected &p, double a, double b) {
     bernstein3(b, bb);
     bernstein3_derivative(a, da);
     bernstein3_derivative(b, db);
+    // Each row's value and a-derivative, then the weighted sum over rows.
     Jet r{};
     for (int i = 0; i < 4; ++i) {
         double rx = 0, ry = 0, rz = 0, rxa = 0, rya = 0, rza = 0;
@@ -244,22 +253,26 @@ struct Solver {
 
 } // namespace
 
-bool intersect_patch(const BezierPatch &patch, const RayFrame &ray, const PatchRootQuery &query,
+bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchRootQuery &query,
                      PatchRoot &root) {
     Region stack[160]; // depth-first: one entry per level, at most ~100 levels
     int top_index = 0;
     Region &first = stack[top_index++];
-    double magnitude = 0;
+    const double ox = ray.org.x, oy = ray.org.y, oz = ray.org.z;
     for (int k = 0; k < 16; ++k) {
-        const Vec3 q = patch.p[k] - ray.org;
-        first.cp.x[k] = dot(q, ray.e1);
-        first.cp.y[k] = dot(q, ray.e2);
-        first.cp.z[k] = dot(q, ray.axis);
-        magnitude = std::max(magnitude, max_abs_component(q));
+        const double qx = patch.x[k] - ox, qy = patch.y[k] - oy, qz = patch.z[k] - oz;
+        first.cp.x[k] = qx * ray.e1.x + qy * ray.e1.y + qz * ray.e1.z;
+        first.cp.y[k] = qx * ray.e2.x + qy * ray.e2.y + qz * ray.e2.z;
+        first.cp.z[k] = qx * ray.axis.x + qy * ray.axis.y + qz * ray.axis.z;
     }
     first.a0 = first.b0 = 0;
     first.a1 = first.b1 = 1;
     const Projected top = first.cp;
+    // The frame is a rotation: the largest projected coordinate is within sqrt(3) of the
+    // largest coordinate of (control point - origin).
+    const Bounds2 top_box = bounds_of(top);
+    const double magnitude = 1.7320508075688772 *
+        std::max({-top_box.xmin, top_box.xmax, -top_box.ymin, top_box.ymax, -top_box.zmin, top_box.zmax});
 
     // Projection and De Casteljau each add a few ulps of the coordinates' magnitude.
     const double noise = 64 * DBL_EPSILON * magnitude;

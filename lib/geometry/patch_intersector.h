@@ -23,6 +23,13 @@ struct RayFrame {
     static RayFrame from_ray(const Vec3 &org, const Vec3 &dir);
 };
 
+// Control points as a structure of arrays (index i * 4 + j as in BezierPatch): the layout
+// the intersector computes in, so that its loops over the 16 points vectorise.
+struct ControlGrid {
+    double x[16], y[16], z[16];
+    static ControlGrid from(const BezierPatch &patch);
+};
+
 struct PatchRootQuery {
     double tnear = 0;          // accepted ray parameters: [tnear, tfar]
     double tfar = INFINITY;
@@ -37,7 +44,11 @@ struct PatchRoot {
 
 // Searches the patch for the root with the smallest t in [tnear, tfar] (any root when
 // any_hit). Returns true and fills `root` when one exists.
-bool intersect_patch(const BezierPatch &patch, const RayFrame &ray, const PatchRootQuery &query,
+bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchRootQuery &query,
                      PatchRoot &root);
+inline bool intersect_patch(const BezierPatch &patch, const RayFrame &ray,
+                            const PatchRootQuery &query, PatchRoot &root) {
+    return intersect_patch(ControlGrid::from(patch), ray, query, root);
+}
 
 } // namespace ppm

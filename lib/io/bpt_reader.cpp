@@ -17,17 +17,20 @@ public:
 
     // Next token, or empty at the end of the text.
     std::string next() {
-        skip_space_and_comments();
-        token_line_ = line_;
+        if (at_end()) return {};
         const size_t start = pos_;
         while (pos_ < text_.size() && !is_space(text_[pos_]) && text_[pos_] != '#') ++pos_;
+        last_token_line_ = line_;
         return text_.substr(start, pos_ - start);
     }
 
+    // At the end, messages name the line of the last token: the line that is incomplete,
+    // not the empty line after the final newline.
     bool at_end() {
         skip_space_and_comments();
-        token_line_ = line_;
-        return pos_ >= text_.size();
+        const bool end = pos_ >= text_.size();
+        token_line_ = end ? last_token_line_ : line_;
+        return end;
     }
 
     [[noreturn]] void error(const std::string &what) const {
@@ -80,6 +83,7 @@ private:
     size_t pos_ = 0;
     size_t line_ = 1;
     size_t token_line_ = 1;
+    size_t last_token_line_ = 1;
 };
 
 } // namespace

@@ -5,6 +5,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <map>
@@ -78,6 +79,23 @@ void check_obj_lines(const std::string &text, const std::string &name) {
     }
 }
 
+// tinyobjloader takes a comment after a face ("f 1 2 3 # top") for more corners and fails;
+// check_obj_lines accepts it. Blank out every '#' that starts a word, to the end of its line,
+// keeping the newlines so that line numbers stay right.
+std::string without_comments(const std::string &text) {
+    std::string out = text;
+    bool in_comment = false;
+    for (size_t k = 0; k < out.size(); ++k) {
+        if (out[k] == '\n') {
+            in_comment = false;
+        } else if (out[k] == '#' && (k == 0 || std::isspace(static_cast<unsigned char>(out[k - 1])))) {
+            in_comment = true;
+        }
+        if (in_comment) out[k] = ' ';
+    }
+    return out;
+}
+
 } // namespace
 
 MeshData parse_obj(const std::string &text, const std::string &name) {
@@ -86,7 +104,7 @@ MeshData parse_obj(const std::string &text, const std::string &name) {
     config.triangulate = true;
     config.vertex_color = false;
     tinyobj::ObjReader reader;
-    if (!reader.ParseFromString(text, "", config))
+    if (!reader.ParseFromString(without_comments(text), "", config))
         fail(PPM_ERROR_PARSE, name + ": " + (reader.Error().empty() ? "not a valid OBJ file" : reader.Error()));
 
     const tinyobj::attrib_t &attrib = reader.GetAttrib();

@@ -20,7 +20,6 @@ void write_miss(ppm_hit &hit) {
     std::memset(&hit, 0, sizeof hit);
     hit.t = INFINITY;
     hit.geom_id = PPM_INVALID_ID;
-    hit.prim_id = PPM_INVALID_ID;
 }
 
 } // namespace
@@ -62,8 +61,8 @@ Geometry &Scene::geometry(uint32_t geom_id) const {
 }
 
 void Scene::set_tolerance(double relative) {
-    if (!(relative >= 1e-13 && relative <= 1e-2))
-        invalid_argument("tolerance " + format_number(relative) + " is outside [1e-13, 1e-2]");
+    if (!(relative >= 1e-14 && relative <= 1e-2))
+        invalid_argument("tolerance " + format_number(relative) + " is outside [1e-14, 1e-2]");
     tolerance_ = relative;
     committed_ = false;
 }
