@@ -186,7 +186,8 @@ PPM_API ppm_status ppm_scene_get_bounds(ppm_scene scene, double out_lower[3], do
 /* ---------------------------------------------------------------------------------------- */
 
 /* A ray org + t * dir for t in [tnear, tfar]. dir need not be unit length (t is in units of
- * |dir|) but must be nonzero and finite; tnear >= 0, tnear <= tfar, tfar may be INFINITY. */
+ * |dir|) but |dir|^2 must be a normal finite double (about 1e-154 < |dir| < 1e154); tnear is
+ * finite and >= 0, tnear <= tfar, tfar may be INFINITY. */
 typedef struct ppm_ray {
     double org[3];
     double tnear;
@@ -211,8 +212,8 @@ typedef struct ppm_hit {
     uint32_t reserved; /* 0 */
 } ppm_hit;
 
-/* Closest hit of each of `count` rays, written to hits[i]. Large batches run on the
- * context's worker threads. Errors: INVALID_ARGUMENT (NULL, a ray with NaN/Inf origin, zero or
+/* Closest hit of each of `count` rays, written to hits[i]; count 0 does nothing and succeeds.
+ * Large batches run on the context's worker threads. Errors: INVALID_ARGUMENT (NULL, a ray with NaN/Inf origin, zero or
  * non-finite direction, tnear < 0 or tnear > tfar: the message names the first bad index),
  * INVALID_OPERATION (scene not committed). Thread safe on a committed scene. */
 PPM_API ppm_status ppm_scene_intersect(ppm_scene scene, const ppm_ray *rays, size_t count,
