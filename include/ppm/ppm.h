@@ -72,9 +72,12 @@ typedef struct ppm_context_t *ppm_context;
  * into the same object. `message` is valid only during the call. */
 typedef void (*ppm_error_callback)(void *user_data, ppm_status status, const char *message);
 
-/* Creates a context with default settings (all hardware threads).
+/* Creates a context with default settings (all hardware threads). The caller owns the one
+ * reference returned. Thread safe.
  * Errors: INVALID_ARGUMENT (out NULL), UNSUPPORTED (Embree device creation failed). */
 PPM_API ppm_status ppm_context_create(ppm_context *out_context);
+/* Adds / drops a reference (atomic: thread safe). The context is freed when the caller's and
+ * all scenes' references are gone. */
 PPM_API ppm_status ppm_context_retain(ppm_context context);
 PPM_API void ppm_context_release(ppm_context context);
 
@@ -99,8 +102,11 @@ typedef struct ppm_scene_t *ppm_scene;
 
 #define PPM_INVALID_ID 0xFFFFFFFFu
 
-/* Creates an empty scene. The scene retains the context. */
+/* Creates an empty scene; the caller owns the one reference returned, the scene holds one on
+ * the context. Thread safe with respect to other scenes of the same context. */
 PPM_API ppm_status ppm_scene_create(ppm_context context, ppm_scene *out_scene);
+/* Adds / drops a reference (atomic: thread safe). Releasing the last reference while another
+ * thread still queries the scene is the caller's error. */
 PPM_API ppm_status ppm_scene_retain(ppm_scene scene);
 PPM_API void ppm_scene_release(ppm_scene scene);
 
@@ -118,7 +124,9 @@ PPM_API ppm_status ppm_scene_get_double(ppm_scene scene, const char *key, double
  * order of addition) in *out_geom_id, which may be NULL. Adding marks the scene uncommitted.
  * Coordinates must be finite; degenerate input (zero radius, zero-area quad, out-of-range
  * index) is INVALID_ARGUMENT naming the offending element. Zero-area triangles of a mesh are
- * allowed and never hit. */
+ * allowed and never hit. A failed add leaves the scene unchanged.
+ * Thread safety of all calls that change a scene (add, load, set, commit): they must not overlap
+ * any other call on the same scene. */
 
 /* Bicubic Bezier patches: `control_points` holds patch_count * 16 * 3 doubles; patch p has
  * control points P[i][j] at index p*16 + i*4 + j (x, y, z consecutive) and the surface
