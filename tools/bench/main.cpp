@@ -1,0 +1,41 @@
+// ppm-bench: benchmarks of libppm. Subcommands dispatch to their own files.
+#include "intersect_command.h"
+
+#include <ppm/ppm.h>
+
+#include <cstdio>
+#include <cstring>
+
+namespace {
+
+void print_usage(std::FILE *out) {
+    std::fprintf(out,
+                 "usage: ppm-bench <command> [options]\n"
+                 "commands:\n"
+                 "  intersect   exact patch intersection vs Embree / CGAL on tessellations\n"
+                 "options:\n"
+                 "  -h, --help  this text ('ppm-bench <command> -h' for a command's options)\n"
+                 "  --version   print the libppm version\n");
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+    if (argc < 2) {
+        print_usage(stderr);
+        return 1;
+    }
+    const char *command = argv[1];
+    if (!std::strcmp(command, "-h") || !std::strcmp(command, "--help")) {
+        print_usage(stdout);
+        return 0;
+    }
+    if (!std::strcmp(command, "--version")) {
+        std::printf("%s\n", ppm_version_string());
+        return 0;
+    }
+    if (!std::strcmp(command, "intersect")) return bench::run_intersect_command(argc, argv, 2);
+    std::fprintf(stderr, "ppm-bench: unknown command '%s'\n", command);
+    print_usage(stderr);
+    return 1;
+}
