@@ -1,0 +1,66 @@
+# Sourced by scripts/setup.sh, scripts/test.sh and .ci/run: the Debian packages the project
+# needs and the one way the Release build is configured, so that setup.sh and test.sh share
+# build/ without reconfiguring it.
+#
+# Environment (all optional):
+#   PPM_BUILD_DIR       Release build directory (default: build)
+#   PPM_ASAN_BUILD_DIR  sanitizer build directory used by test.sh (default: build-asan)
+#   PPM_JOBS            parallel compile jobs (default: number of cores)
+
+PPM_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+PPM_BUILD_DIR=${PPM_BUILD_DIR:-build}
+PPM_ASAN_BUILD_DIR=${PPM_ASAN_BUILD_DIR:-build-asan}
+PPM_JOBS=${PPM_JOBS:-$(nproc 2>/dev/null || echo 2)}
+
+# Everything the library, tests, tools and (planned) renderer and Python bindings build
+# with, as Debian bookworm names them.
+PPM_DEBIAN_PACKAGES=(
+  build-essential cmake ninja-build pkg-config
+  libembree-dev libtbb-dev libtinyobjloader-dev libcmocka-dev
+  libopenimageio-dev libopenexr-dev openimageio-tools
+  libcgal-dev libgmp-dev libmpfr-dev libnanoflann-dev nlohmann-json3-dev
+  python3 python3-venv python3-pip
+)
+
+# Prints the packages of PPM_DEBIAN_PACKAGES that are not installed, one per line. Prints
+# nothing on a system without dpkg (not Debian): there the build reports what it lacks.
+ppm_missing_packages() {
+  command -v dpkg-query >/dev/null 2>&1 || return 0
+  local package
+  for package in "${PPM_DEBIAN_PACKAGES[@]}"; do
+    if [[ "$(dpkg-query -W -f='${db:Status-Status}' "$package" 2>/dev/null)" != installed ]]; then
+      echo "$package"
+    fi
+  done
+}
+
+# Step banners with the time since the script started, so logs show where time goes.
+ppm_step() {
+  printf '\n==> [%4ds] %s\n' "$SECONDS" "$*"
+}
+
+ppm_die() {
+  printf '\nerror: %s\n' "$*" >&2
+  exit 1
+}
+
+# Absolute form of a path given relative to the repository.
+ppm_abspath() {
+  if [[ "$1" == /* ]]; then echo "$1"; else echo "$PPM_ROOT/$1"; fi
+}
+
+# ppm_configure SOURCE_DIR BUILD_DIR [cmake args...]: configures with Ninja, or with whatever
+# generator BUILD_DIR was first configured with (cmake refuses to switch generators in place).
+ppm_configure() {
+  local source_dir=$1 build_dir=$2
+  shift 2
+  local generator=()
+  [[ -f "$build_dir/CMakeCache.txt" ]] || generator=(-G Ninja)
+  cmake -S "$source_dir" -B "$build_dir" "${generator[@]}" "$@"
+}
+
+# Configures and builds the Release library, tests and tools in PPM_BUILD_DIR.
+ppm_build_release() {
+  ppm_configure "$PPM_ROOT" "$PPM_BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DPPM_SANITIZE=OFF &&
+    cmake --build "$PPM_BUILD_DIR" --parallel "$PPM_JOBS"
+}

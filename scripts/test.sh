@@ -1,0 +1,219 @@
+#!/usr/bin/env bash
+# README command 2: builds and tests everything. Assumes scripts/setup.sh has run.
+#
+#   bash scripts/test.sh
+#
+# 1. Release build in build/, every ctest test.
+# 2. ASan + UBSan build (-DPPM_SANITIZE=ON) in build-asan/, ctest with PPM_TEST_QUICK=1 and
+#    sanitizer errors and leaks fatal.
+# 3. Installs the Release build into a temporary prefix and checks the package: files, SONAME,
+#    exported symbols, and the examples/ consumer built against the installed library with
+#    find_package(ppm) and with pkg-config.
+# Exits non-zero if anything failed; the last line sums up ctest tests and package checks.
+set -uo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+cd "$PPM_ROOT"
+
+passed=0
+failed=0
+failures=()
+
+pass() {
+  passed=$((passed + 1))
+  echo "PASS: $*"
+}
+
+fail() {
+  failed=$((failed + 1))
+  failures+=("$*")
+  echo "FAIL: $*"
+}
+
+finish() {
+  ppm_step "Summary (${SECONDS}s)"
+  local failure
+  for failure in "${failures[@]}"; do echo "  failed: $failure"; done
+  echo "summary: $passed passed, $failed failed"
+  ((failed == 0))
+  exit
+}
+
+# run_ctest LABEL BUILD_DIR [VAR=value...]: runs every test of BUILD_DIR, adds its counts.
+run_ctest() {
+  local label=$1 dir=$2
+  shift 2
+  local log="$dir/ctest-summary.log"
+  env "$@" ctest --test-dir "$dir" --output-on-failure --parallel 2 --no-tests=error \
+    --timeout 1200 2>&1 | tee "$log"
+  local status=${PIPESTATUS[0]}
+  # "100% tests passed, 0 tests failed out of 6"
+  local line
+  line=$(grep -E '^[0-9]+% tests passed, [0-9]+ tests? failed out of [0-9]+' "$log" | tail -n 1)
+  if [[ -z "$line" ]]; then
+    fail "$label: ctest ran no test or did not finish (exit status $status)"
+    return
+  fi
+  local total failed_here
+  total=$(sed -E 's/.* out of ([0-9]+).*/\1/' <<<"$line")
+  failed_here=$(sed -E 's/.* ([0-9]+) tests? failed.*/\1/' <<<"$line")
+  passed=$((passed + total - failed_here))
+  failed=$((failed + failed_here))
+  if ((failed_here > 0)); then
+    failures+=("$label: $failed_here of $total ctest tests")
+  elif ((status != 0)); then
+    fail "$label: ctest exited with status $status"
+  fi
+  echo "$label: $((total - failed_here)) of $total ctest tests passed"
+}
+
+# ---------------------------------------------------------------------------------------------
+ppm_step "Dependencies"
+mapfile -t missing < <(ppm_missing_packages)
+if ((${#missing[@]} > 0)); then
+  ppm_die "missing Debian packages: ${missing[*]}
+Install them (and build once) with README command 1:  bash scripts/setup.sh"
+fi
+for tool in cmake ninja pkg-config cc c++ nm readelf ldd; do
+  command -v "$tool" >/dev/null 2>&1 ||
+    ppm_die "'$tool' not found; README command 1 (bash scripts/setup.sh) installs it"
+done
+echo "all ${#PPM_DEBIAN_PACKAGES[@]} Debian packages and the build tools are there"
+
+# ---------------------------------------------------------------------------------------------
+ppm_step "Release build in $PPM_BUILD_DIR/"
+if ! ppm_build_release; then
+  fail "Release build"
+  finish
+fi
+
+ppm_step "Release tests"
+run_ctest "Release" "$PPM_BUILD_DIR"
+
+# ---------------------------------------------------------------------------------------------
+ppm_step "ASan + UBSan build in $PPM_ASAN_BUILD_DIR/"
+# RelWithDebInfo: optimised like the real thing, with line numbers in sanitizer reports.
+if ppm_configure "$PPM_ROOT" "$PPM_ASAN_BUILD_DIR" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DPPM_SANITIZE=ON && cmake --build "$PPM_ASAN_BUILD_DIR" --parallel "$PPM_JOBS"; then
+  ppm_step "ASan + UBSan tests (PPM_TEST_QUICK=1)"
+  # Any report ends the test with a non-zero status; leaks are reported at exit.
+  run_ctest "ASan+UBSan" "$PPM_ASAN_BUILD_DIR" PPM_TEST_QUICK=1 \
+    ASAN_OPTIONS=detect_leaks=1:halt_on_error=1:abort_on_error=0:detect_stack_use_after_return=1:strict_string_checks=1:check_initialization_order=1:strict_init_order=1 \
+    UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1:report_error_type=1 \
+    LSAN_OPTIONS=print_suppressions=0
+else
+  fail "ASan + UBSan build"
+fi
+
+# ---------------------------------------------------------------------------------------------
+ppm_step "Install into a temporary prefix and use the installed package"
+work=$(mktemp -d "${TMPDIR:-/tmp}/ppm-test.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+prefix="$work/prefix"
+
+check_install() {
+  cmake --install "$PPM_BUILD_DIR" --prefix "$prefix" || return 1
+  local file status=0
+  for file in include/ppm/ppm.h include/ppm/config.h lib/libppm.so lib/libppm.so.0 \
+    lib/cmake/ppm/ppmConfig.cmake lib/cmake/ppm/ppmConfigVersion.cmake \
+    lib/cmake/ppm/ppmTargets.cmake lib/cmake/ppm/ppmTargets-release.cmake lib/pkgconfig/ppm.pc; do
+    [[ -e "$prefix/$file" ]] || {
+      echo "not installed: $file"
+      status=1
+    }
+  done
+  return $status
+}
+if check_install; then
+  pass "install: headers, libppm.so*, CMake package and ppm.pc are in place"
+else
+  fail "install"
+  finish
+fi
+
+library="$prefix/lib/libppm.so"
+soname=$(readelf -d "$library" | sed -n 's/.*Library soname: \[\(.*\)\].*/\1/p')
+if [[ "$soname" == libppm.so.0 ]]; then
+  pass "SONAME is $soname"
+else
+  fail "SONAME is '$soname', expected libppm.so.0"
+fi
+
+# Exported symbols: exactly the functions ppm.h declares with PPM_API. The version script's
+# node (PPM_0, an absolute symbol) is not a function and is left out.
+exported=$(nm -D --defined-only "$library" | awk '$2 != "A" { sub(/@.*/, "", $3); print $3 }' |
+  sort -u)
+# Each declaration contributes its first "name(": the function, not a parameter type.
+declared=$(tr '\n' ' ' <"$prefix/include/ppm/ppm.h" | grep -oE 'PPM_API[^;]*' |
+  sed -E 's/^[^(]*[^A-Za-z0-9_](ppm_[A-Za-z0-9_]+) *\(.*/\1/' | sort -u)
+not_prefixed=$(grep -v '^ppm_' <<<"$exported")
+not_exported=$(comm -23 <(echo "$declared") <(echo "$exported"))
+not_declared=$(comm -13 <(echo "$declared") <(echo "$exported"))
+if [[ -z "$not_prefixed$not_exported$not_declared" && -n "$exported" ]]; then
+  pass "exports exactly the $(wc -l <<<"$exported") ppm_* functions of ppm.h"
+else
+  [[ -z "$not_prefixed" ]] || echo "exported without the ppm_ prefix:" $not_prefixed
+  [[ -z "$not_exported" ]] || echo "declared in ppm.h but not exported:" $not_exported
+  [[ -z "$not_declared" ]] || echo "exported but not declared in ppm.h:" $not_declared
+  fail "exported symbols"
+fi
+
+# run_consumer LABEL BINARY: runs the example on the teapot and checks that it loaded the
+# installed libppm, not the one in the build tree.
+run_consumer() {
+  local label=$1 binary=$2
+  local loaded
+  loaded=$(ldd "$binary" | awk '$1 == "libppm.so.0" { print $3 }')
+  if [[ "$(readlink -f "$loaded")" != "$(readlink -f "$prefix/lib/libppm.so.0")" ]]; then
+    fail "$label: loads libppm.so.0 from '$loaded', not from the install prefix"
+    return
+  fi
+  if "$binary" tests/data/teapot.bpt >"$work/$label.out" 2>&1 &&
+    grep -q '^first hit' "$work/$label.out"; then
+    pass "$label: examples/teapot_rays built against the installed library and ran"
+  else
+    cat "$work/$label.out"
+    fail "$label: examples/teapot_rays failed"
+  fi
+}
+
+# find_package(ppm) through CMAKE_PREFIX_PATH; warnings are errors so that ppm.h stays clean.
+consumer="$work/consumer-cmake"
+if cmake -S examples -B "$consumer" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_C_FLAGS=-Werror >"$work/consumer-cmake.log" 2>&1 &&
+  cmake --build "$consumer" >>"$work/consumer-cmake.log" 2>&1; then
+  found=$(sed -n 's/^ppm_DIR:PATH=//p' "$consumer/CMakeCache.txt")
+  if [[ "$(readlink -f "$found")" == "$(readlink -f "$prefix/lib/cmake/ppm")" ]]; then
+    run_consumer find_package "$consumer/teapot_rays"
+  else
+    fail "find_package: found ppm in '$found', not in the install prefix"
+  fi
+else
+  cat "$work/consumer-cmake.log"
+  fail "find_package: configuring or building examples/ against the install failed"
+fi
+
+# pkg-config, compiled by hand as a Makefile user would.
+export PKG_CONFIG_PATH="$prefix/lib/pkgconfig"
+if version=$(pkg-config --modversion ppm) && cflags=$(pkg-config --cflags ppm) &&
+  libs=$(pkg-config --libs ppm) && libdir=$(pkg-config --variable=libdir ppm); then
+  # shellcheck disable=SC2086 # the flags are lists of words
+  if cc -std=c99 -Wall -Wextra -pedantic -Werror $cflags examples/teapot_rays.c \
+    -o "$work/teapot_rays-pkgconfig" $libs -lm -Wl,-rpath,"$libdir"; then
+    run_consumer pkg-config "$work/teapot_rays-pkgconfig"
+  else
+    fail "pkg-config: compiling examples/teapot_rays.c with ppm.pc ($version) failed"
+  fi
+  # The header is C99 for C and must also compile cleanly as C++.
+  # shellcheck disable=SC2086
+  if printf '#include <ppm/ppm.h>\nint main() { return ppm_version() == PPM_VERSION ? 0 : 1; }\n' |
+    c++ -std=c++17 -Wall -Wextra -pedantic -Werror $cflags -x c++ - -o "$work/header-cxx" $libs \
+      -Wl,-rpath,"$libdir" && "$work/header-cxx"; then
+    pass "ppm.h compiles as C++17 and PPM_VERSION matches ppm_version()"
+  else
+    fail "ppm.h as C++17, or PPM_VERSION differs from ppm_version()"
+  fi
+else
+  fail "pkg-config does not find ppm.pc in the install prefix"
+fi
+
+finish
