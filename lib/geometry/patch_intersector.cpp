@@ -24,6 +24,16 @@ ControlGrid ControlGrid::from(const BezierPatch &patch) {
         g.y[k] = patch.p[k].y;
         g.z[k] = patch.p[k].z;
     }
+    double du = 0, dv = 0;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 3; ++j) {
+            const Vec3 along_u = patch.at(i, j + 1) - patch.at(i, j);
+            const Vec3 along_v = patch.at(j + 1, i) - patch.at(j, i);
+            du = std::max(du, std::fabs(along_u.x) + std::fabs(along_u.y) + std::fabs(along_u.z));
+            dv = std::max(dv, std::fabs(along_v.x) + std::fabs(along_v.y) + std::fabs(along_v.z));
+        }
+    // The 1-norm is not rotation invariant; sqrt(3) covers any rotation of a 2-norm bound.
+    g.derivative_bound = 3.0 * std::sqrt(3.0) * std::max(du, dv);
     return g;
 }
 
@@ -70,9 +80,10 @@ bool misses_chord_slabs(const Projected &p, double noise) {
     return false;
 }
 
-// Value and first derivatives of (x, y, z) at (a, b) in the region's own [0, 1]^2.
+// Value and first derivatives of (x, y) at (a, b) in the region's own [0, 1]^2. The depth z
+// is needed only once a root is found (evaluate_z).
 struct Jet {
-    double x, y, z, xa, xb, ya, yb, za, zb;
+    double x, y, xa, xb, ya, yb;
 };
 
 Jet evaluate_jet(const Projected &p, double a, double b) {
@@ -84,17 +95,28 @@ Jet evaluate_jet(const Projected &p, double a, double b) {
     // Each row's value and a-derivative, then the weighted sum over rows.
     Jet r{};
     for (int i = 0; i < 4; ++i) {
-        double rx = 0, ry = 0, rz = 0, rxa = 0, rya = 0, rza = 0;
+        double rx = 0, ry = 0, rxa = 0, rya = 0;
         for (int j = 0; j < 4; ++j) {
             const int k = i * 4 + j;
-            rx += ba[j] * p.x[k]; ry += ba[j] * p.y[k]; rz += ba[j] * p.z[k];
-            rxa += da[j] * p.x[k]; rya += da[j] * p.y[k]; rza += da[j] * p.z[k];
+            rx += ba[j] * p.x[k]; ry += ba[j] * p.y[k];
+            rxa += da[j] * p.x[k]; rya += da[j] * p.y[k];
         }
-        r.x += bb[i] * rx; r.y += bb[i] * ry; r.z += bb[i] * rz;
-        r.xa += bb[i] * rxa; r.ya += bb[i] * rya; r.za += bb[i] * rza;
-        r.xb += db[i] * rx; r.yb += db[i] * ry; r.zb += db[i] * rz;
+        r.x += bb[i] * rx; r.y += bb[i] * ry;
+        r.xa += bb[i] * rxa; r.ya += bb[i] * rya;
+        r.xb += db[i] * rx; r.yb += db[i] * ry;
     }
     return r;
+}
+
+double evaluate_z(const Projected &p, double a, double b) {
+    double ba[4], bb[4];
+    bernstein3(a, ba);
+    bernstein3(b, bb);
+    double z = 0;
+    for (int i = 0; i < 4; ++i)
+        z += bb[i] * (ba[0] * p.z[i * 4] + ba[1] * p.z[i * 4 + 1] + ba[2] * p.z[i * 4 + 2] +
+                      ba[3] * p.z[i * 4 + 3]);
+    return z;
 }
 
 void split_a(const Projected &p, double t, Projected &left, Projected &right) {
@@ -128,12 +150,26 @@ void net_lengths(const Projected &p, double &along_a, double &along_b) {
 }
 
 // What the interval test proves about the roots of (x, y) in a region.
-enum class Krawczyk {
+enum class Verdict {
     no_root,          // K(X) misses X
     one_root,         // K(X) inside X: exactly one root, Newton converges to it
     at_most_one_root, // |I - Y J(X)| < 1: (x, y) is injective on X, so a root Newton finds
                       // inside X is the only one there
     undecided
+};
+
+struct Krawczyk {
+    Verdict verdict = Verdict::undecided;
+    double start_a = 0.5, start_b = 0.5; // c - Y F(c): a Newton step from the centre
+    double y00 = 0, y01 = 0, y10 = 0, y11 = 0; // Y = J(c)^-1 in the region's coordinates
+    double contraction = 1;              // |I - Y J(X)| in the infinity norm
+
+    // For a root x* and a point x both in X: F(x) = J' (x - x*) with J' in J(X), so
+    // |x - x*| <= |Y F(x)| / (1 - contraction) (in the region's coordinates).
+    double distance_to_root(double fx, double fy) const {
+        return std::max(std::fabs(y00 * fx + y01 * fy), std::fabs(y10 * fx + y11 * fy)) /
+               (1 - contraction);
+    }
 };
 
 struct Interval {
@@ -174,11 +210,12 @@ Interval scale(double y, Interval i) {
 // injective on the box, which saves a split when the root sits near the box's edge (where K
 // sticks out of the box however small the box). `start` receives c - Y F(c), a Newton step
 // from the centre.
-Krawczyk krawczyk_test(const Projected &p, double &start_a, double &start_b) {
+Krawczyk krawczyk_test(const Projected &p) {
+    Krawczyk k;
     const Jet c = evaluate_jet(p, 0.5, 0.5);
     const double det = c.xa * c.yb - c.xb * c.ya;
     const double jnorm = std::fabs(c.xa) + std::fabs(c.xb) + std::fabs(c.ya) + std::fabs(c.yb);
-    if (!(std::fabs(det) > 1e-14 * jnorm * jnorm)) return Krawczyk::undecided;
+    if (!(std::fabs(det) > 1e-14 * jnorm * jnorm)) return k;
     const double y00 = c.yb / det, y01 = -c.xb / det, y10 = -c.ya / det, y11 = c.xa / det;
     const double step_a = y00 * c.x + y01 * c.y, step_b = y10 * c.x + y11 * c.y;
 
@@ -193,31 +230,38 @@ Krawczyk krawczyk_test(const Projected &p, double &start_a, double &start_b) {
                              magnitude(0.0, scale(y00, xb), scale(y01, yb)));
     const double r1 = 0.5 * (magnitude(0.0, scale(y10, xa), scale(y11, ya)) +
                              magnitude(1.0, scale(y10, xb), scale(y11, yb)));
-    if (!std::isfinite(r0 + r1 + step_a + step_b)) return Krawczyk::undecided;
+    if (!std::isfinite(r0 + r1 + step_a + step_b)) return k;
 
     // Inflate by a rounding margin: the interval arithmetic above is not outward rounded.
     const double margin = 1e-12;
     const double k0lo = 0.5 - step_a - r0 - margin, k0hi = 0.5 - step_a + r0 + margin;
     const double k1lo = 0.5 - step_b - r1 - margin, k1hi = 0.5 - step_b + r1 + margin;
-    start_a = 0.5 - step_a;
-    start_b = 0.5 - step_b;
-    if (k0hi < 0.0 || k0lo > 1.0 || k1hi < 0.0 || k1lo > 1.0) return Krawczyk::no_root;
-    if (k0lo > 0.0 && k0hi < 1.0 && k1lo > 0.0 && k1hi < 1.0) return Krawczyk::one_root;
-    // r_k is half the row sum of |I - Y J|; stay clear of 1 for rounding.
-    if (std::max(r0, r1) + margin < 0.45) return Krawczyk::at_most_one_root;
-    return Krawczyk::undecided;
+    k.start_a = 0.5 - step_a;
+    k.start_b = 0.5 - step_b;
+    k.y00 = y00; k.y01 = y01; k.y10 = y10; k.y11 = y11;
+    k.contraction = 2 * (std::max(r0, r1) + margin);
+    if (k0hi < 0.0 || k0lo > 1.0 || k1hi < 0.0 || k1lo > 1.0)
+        k.verdict = Verdict::no_root;
+    else if (k0lo > 0.0 && k0hi < 1.0 && k1lo > 0.0 && k1hi < 1.0)
+        k.verdict = Verdict::one_root;
+    else if (k.contraction < 0.9) // stay clear of 1 for rounding
+        k.verdict = Verdict::at_most_one_root;
+    return k;
 }
 
 struct Solver {
-    const Projected &top;     // the whole input patch in ray space: Newton evaluates here
+    const Projected &top;      // the whole input patch in ray space: Newton evaluates here
+    double derivative;         // bound on |dS/da| and |dS/db| over the patch
     double residual_converged; // |x|, |y| at or below this count as zero
-    double depth_converged;    // a last step that moved z less than this means converged
+    double depth_converged;    // a last step that moved the point less than this: converged
+    double error_converged;    // a proven distance to the root below this: converged
 
     // Guarded Newton on x = y = 0 over the input patch, starting at (a, b), accepting only a
     // root inside [a0, a1] x [b0, b1] (plus a rounding margin). Returns false on a singular
-    // Jacobian, NaN, leaving the region's neighbourhood, or no convergence.
-    bool newton(double a, double b, const Region &r, double &root_a, double &root_b,
-                double &distance) const {
+    // Jacobian, NaN, leaving the region's neighbourhood, or no convergence. With the region's
+    // Krawczyk data it stops as soon as the proven distance to the root is small enough.
+    bool newton(double a, double b, const Region &r, const Krawczyk *proof, double &root_a,
+                double &root_b, double &distance) const {
         const double wa = r.a1 - r.a0, wb = r.b1 - r.b0;
         for (int iteration = 0; iteration < 16; ++iteration) {
             const Jet j = evaluate_jet(top, a, b);
@@ -225,13 +269,15 @@ struct Solver {
             if (!(std::fabs(det) > 0) || !std::isfinite(det)) return false;
             const double da = (j.xb * j.y - j.yb * j.x) / det;
             const double db = (j.ya * j.x - j.xa * j.y) / det;
-            const double step_z = j.za * da + j.zb * db;
+            // A step from a point whose residual is at rounding level, moving the point by
+            // less than the tolerance, leaves an error of the order of its square.
+            bool converged = std::max(std::fabs(j.x), std::fabs(j.y)) <= residual_converged &&
+                             derivative * (std::fabs(da) + std::fabs(db)) <= depth_converged;
+            if (!converged && proof && a >= r.a0 && a <= r.a1 && b >= r.b0 && b <= r.b1)
+                converged = derivative * (wa + wb) * proof->distance_to_root(j.x, j.y) <= error_converged;
             a += da;
             b += db;
-            // A step from a point whose residual is at rounding level, moving the depth by
-            // less than the tolerance, leaves an error of the order of its square: done.
-            if (std::max(std::fabs(j.x), std::fabs(j.y)) <= residual_converged &&
-                std::fabs(step_z) <= depth_converged) {
+            if (converged) {
                 const double margin_a = 1e-9 * wa + 4 * DBL_EPSILON;
                 const double margin_b = 1e-9 * wb + 4 * DBL_EPSILON;
                 if (!(a >= r.a0 - margin_a && a <= r.a1 + margin_a && b >= r.b0 - margin_b &&
@@ -239,7 +285,7 @@ struct Solver {
                     return false; // a root of another region: it is found there
                 root_a = std::clamp(a, 0.0, 1.0);
                 root_b = std::clamp(b, 0.0, 1.0);
-                distance = j.z + step_z;
+                distance = evaluate_z(top, root_a, root_b);
                 return true;
             }
             // Newton may overshoot a little on its way; far outside the region it is lost.
@@ -277,7 +323,8 @@ bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchR
     // Projection and De Casteljau each add a few ulps of the coordinates' magnitude.
     const double noise = 64 * DBL_EPSILON * magnitude;
     const double point_size = std::max(query.tolerance, 16 * noise);
-    const Solver solver{top, std::max(noise, 1e-4 * query.tolerance), 0.1 * point_size};
+    const Solver solver{top, patch.derivative_bound, std::max(noise, 1e-4 * query.tolerance),
+                        0.1 * point_size, 0.05 * point_size};
     const double znear = query.tnear * ray.dir_length;
     double zbest = query.tfar * ray.dir_length;
     bool found = false;
@@ -306,21 +353,20 @@ bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchR
         // point on the surface within the tolerance of the ray.
         if (extent <= point_size || (wa <= 1e-15 && wb <= 1e-15)) {
             double a, b, z;
-            if (!solver.newton(ca, cb, r, a, b, z)) {
+            if (!solver.newton(ca, cb, r, nullptr, a, b, z)) {
                 a = ca;
                 b = cb;
-                z = evaluate_jet(top, ca, cb).z;
+                z = evaluate_z(top, ca, cb);
             }
             if (accept(a, b, z) && query.any_hit) return true;
             continue;
         }
 
-        double start_a, start_b;
-        const Krawczyk verdict = krawczyk_test(r.cp, start_a, start_b);
-        if (verdict == Krawczyk::no_root) continue;
-        if (verdict == Krawczyk::one_root || verdict == Krawczyk::at_most_one_root) {
+        const Krawczyk proof = krawczyk_test(r.cp);
+        if (proof.verdict == Verdict::no_root) continue;
+        if (proof.verdict == Verdict::one_root || proof.verdict == Verdict::at_most_one_root) {
             double a, b, z;
-            if (solver.newton(r.a0 + start_a * wa, r.b0 + start_b * wb, r, a, b, z)) {
+            if (solver.newton(r.a0 + proof.start_a * wa, r.b0 + proof.start_b * wb, r, &proof, a, b, z)) {
                 if (accept(a, b, z) && query.any_hit) return true;
                 continue;
             }

@@ -27,6 +27,9 @@ struct RayFrame {
 // the intersector computes in, so that its loops over the 16 points vectorise.
 struct ControlGrid {
     double x[16], y[16], z[16];
+    // Bound on |dS/du|_1 + ... : the largest |dS/du| or |dS/dv| (1-norm) over the patch, from
+    // the derivative control points. Rotation invariant, so it holds in ray space too.
+    double derivative_bound;
     static ControlGrid from(const BezierPatch &patch);
 };
 
