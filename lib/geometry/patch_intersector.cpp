@@ -2,6 +2,10 @@
 
 #include "math/min_max.h"
 
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -92,6 +96,29 @@ Jet evaluate_jet(const Projected &p, double a, double b) {
     bernstein3(b, bb);
     bernstein3_derivative(a, da);
     bernstein3_derivative(b, db);
+#ifdef __SSE2__
+    // Contract the rows into column sums (value and b-derivative), two columns per register,
+    // then each column sum with the a-weights.
+    __m128d cx0 = _mm_setzero_pd(), cx1 = cx0, cy0 = cx0, cy1 = cx0;
+    __m128d bx0 = cx0, bx1 = cx0, by0 = cx0, by1 = cx0;
+    for (int i = 0; i < 4; ++i) {
+        const __m128d w = _mm_set1_pd(bb[i]), dw = _mm_set1_pd(db[i]);
+        const __m128d x0 = _mm_loadu_pd(p.x + 4 * i), x1 = _mm_loadu_pd(p.x + 4 * i + 2);
+        const __m128d y0 = _mm_loadu_pd(p.y + 4 * i), y1 = _mm_loadu_pd(p.y + 4 * i + 2);
+        cx0 = _mm_add_pd(cx0, _mm_mul_pd(w, x0)); cx1 = _mm_add_pd(cx1, _mm_mul_pd(w, x1));
+        cy0 = _mm_add_pd(cy0, _mm_mul_pd(w, y0)); cy1 = _mm_add_pd(cy1, _mm_mul_pd(w, y1));
+        bx0 = _mm_add_pd(bx0, _mm_mul_pd(dw, x0)); bx1 = _mm_add_pd(bx1, _mm_mul_pd(dw, x1));
+        by0 = _mm_add_pd(by0, _mm_mul_pd(dw, y0)); by1 = _mm_add_pd(by1, _mm_mul_pd(dw, y1));
+    }
+    const __m128d ba0 = _mm_loadu_pd(ba), ba1 = _mm_loadu_pd(ba + 2);
+    const __m128d da0 = _mm_loadu_pd(da), da1 = _mm_loadu_pd(da + 2);
+    auto dot4 = [](__m128d w0, __m128d w1, __m128d v0, __m128d v1) {
+        const __m128d s = _mm_add_pd(_mm_mul_pd(w0, v0), _mm_mul_pd(w1, v1));
+        return _mm_cvtsd_f64(_mm_add_sd(s, _mm_unpackhi_pd(s, s)));
+    };
+    return {dot4(ba0, ba1, cx0, cx1), dot4(ba0, ba1, cy0, cy1), dot4(da0, da1, cx0, cx1),
+            dot4(ba0, ba1, bx0, bx1), dot4(da0, da1, cy0, cy1), dot4(ba0, ba1, by0, by1)};
+#else
     // Each row's value and a-derivative, then the weighted sum over rows.
     Jet r{};
     for (int i = 0; i < 4; ++i) {
@@ -106,6 +133,7 @@ Jet evaluate_jet(const Projected &p, double a, double b) {
         r.xb += db[i] * rx; r.yb += db[i] * ry;
     }
     return r;
+#endif
 }
 
 double evaluate_z(const Projected &p, double a, double b) {
