@@ -46,13 +46,18 @@ Vec3 geometric_normal(const BezierPatch &patch, double u, double v) {
 }
 
 Vec3 geometric_normal(const BezierPatch &patch, double u, double v, double scale) {
+    return geometric_normal(patch, u, v, scale, evaluate_derivatives(patch, u, v));
+}
+
+Vec3 geometric_normal(const BezierPatch &patch, double u, double v, double scale,
+                      const SurfaceDerivatives &at_uv) {
     if (!(scale > 0)) return {};
     // A derivative this small is rounding noise of a collapsed edge, not a tangent.
     const double vanish = 1e-10 * scale;
     // Walk towards the patch centre if the point itself is degenerate in both directions
     // (both derivatives and the twist vanish); three tiny steps suffice for polynomial data.
     for (int attempt = 0; attempt < 4; ++attempt) {
-        const SurfaceDerivatives d = evaluate_derivatives(patch, u, v);
+        const SurfaceDerivatives d = attempt == 0 ? at_uv : evaluate_derivatives(patch, u, v);
         Vec3 tu = d.du, tv = d.dv;
         // Near a collapsed edge v = e, dS/du ~ (v - e) * d2S/dudv: the limit direction of
         // the cross product uses the twist vector, with the sign of (v - e).

@@ -58,6 +58,9 @@ Vec3 mixed_derivative(const BezierPatch &patch, double u, double v);
 Vec3 geometric_normal(const BezierPatch &patch, double u, double v);
 // The same with the patch's size (diagonal of its control points) known.
 Vec3 geometric_normal(const BezierPatch &patch, double u, double v, double scale);
+// The same reusing evaluate_derivatives(patch, u, v).
+Vec3 geometric_normal(const BezierPatch &patch, double u, double v, double scale,
+                      const SurfaceDerivatives &at_uv);
 
 // Splits at u = t (left: u in [0, t]) or at v = t (left: v in [0, t]).
 void split_u(const BezierPatch &patch, double t, BezierPatch &left, BezierPatch &right);

@@ -133,8 +133,9 @@ RTCGeometry PatchGeometry::create_embree(RTCDevice device, const EmbreeFrame &fr
 void PatchGeometry::describe_hit(const RayQuery &query, double tolerance, ppm_hit &hit) const {
     const uint32_t index = query.hit.prim_id;
     const BezierPatch &patch = world_[index];
-    const Vec3 p = evaluate(patch, query.hit.u, query.hit.v);
-    const Vec3 n = geometric_normal(patch, query.hit.u, query.hit.v, scale_[index]);
+    const SurfaceDerivatives d = evaluate_derivatives(patch, query.hit.u, query.hit.v);
+    const Vec3 &p = d.p;
+    const Vec3 n = geometric_normal(patch, query.hit.u, query.hit.v, scale_[index], d);
     p.store(hit.p);
     n.store(hit.ng);
     n.store(hit.ns);
