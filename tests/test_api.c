@@ -10,30 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct fixture {
-    ppm_context context;
-    ppm_scene scene;
-} fixture;
-
-static int setup(void **state) {
-    fixture *f = calloc(1, sizeof *f);
-    if (!f) return -1;
-    if (ppm_context_create(&f->context) != PPM_OK || ppm_scene_create(f->context, &f->scene) != PPM_OK) {
-        ppm_context_release(f->context);
-        free(f);
-        return -1;
-    }
-    *state = f;
-    return 0;
-}
-
-static int teardown(void **state) {
-    fixture *f = *state;
-    ppm_scene_release(f->scene);
-    ppm_context_release(f->context);
-    free(f);
-    return 0;
-}
+typedef scene_fixture fixture;
 
 static const double origin[3] = {0, 0, 0};
 static const double unit_x[3] = {1, 0, 0};
@@ -1017,7 +994,7 @@ static void test_spawn_ray_success_writes_ray(void **state) {
     assert_true(out.org[2] > hit.p[2]); /* moved outwards, the side dir points to */
 }
 
-#define TEST(name) cmocka_unit_test_setup_teardown(name, setup, teardown)
+#define TEST(name) cmocka_unit_test_setup_teardown(name, scene_fixture_setup, scene_fixture_teardown)
 
 int main(void) {
     const struct CMUnitTest tests[] = {

@@ -13,30 +13,7 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-typedef struct fixture {
-    ppm_context context;
-    ppm_scene scene;
-} fixture;
-
-static int setup(void **state) {
-    fixture *f = calloc(1, sizeof *f);
-    if (!f) return -1;
-    if (ppm_context_create(&f->context) != PPM_OK || ppm_scene_create(f->context, &f->scene) != PPM_OK) {
-        ppm_context_release(f->context);
-        free(f);
-        return -1;
-    }
-    *state = f;
-    return 0;
-}
-
-static int teardown(void **state) {
-    fixture *f = *state;
-    ppm_scene_release(f->scene);
-    ppm_context_release(f->context);
-    free(f);
-    return 0;
-}
+typedef scene_fixture fixture;
 
 static ppm_ray make_ray(double ox, double oy, double oz, double dx, double dy, double dz) {
     ppm_ray ray = {{ox, oy, oz}, 0, {dx, dy, dz}, INFINITY};
@@ -806,7 +783,7 @@ static void test_spawn_from_inside_sphere_hit(void **state) {
     assert_miss(trace(f->scene, spawn(&hit, 0, 1, 0)));
 }
 
-#define TEST(name) cmocka_unit_test_setup_teardown(name, setup, teardown)
+#define TEST(name) cmocka_unit_test_setup_teardown(name, scene_fixture_setup, scene_fixture_teardown)
 
 int main(void) {
     const struct CMUnitTest tests[] = {

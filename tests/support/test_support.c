@@ -1,7 +1,10 @@
 #include "test_support.h"
 
+#include <ppm/ppm.h>
+
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 double test_rng_uniform(test_rng *rng) {
     uint64_t z = (rng->state += 0x9E3779B97F4A7C15ull);
@@ -17,4 +20,24 @@ void _assert_close(double a, double b, double tolerance, const char *a_text, con
     print_error("%s = %.17g and %s = %.17g differ by %.3g > %.3g\n", a_text, a, b_text, b,
                 fabs(a - b), tolerance);
     _fail(file, line);
+}
+
+int scene_fixture_setup(void **state) {
+    scene_fixture *f = calloc(1, sizeof *f);
+    if (!f) return -1;
+    if (ppm_context_create(&f->context) != PPM_OK || ppm_scene_create(f->context, &f->scene) != PPM_OK) {
+        ppm_context_release(f->context);
+        free(f);
+        return -1;
+    }
+    *state = f;
+    return 0;
+}
+
+int scene_fixture_teardown(void **state) {
+    scene_fixture *f = *state;
+    ppm_scene_release(f->scene);
+    ppm_context_release(f->context);
+    free(f);
+    return 0;
 }

@@ -14,6 +14,14 @@ extern "C" {
 /* cmocka 1.1.5's header has no C++ guards of its own. */
 #include <cmocka.h>
 
+/* cmocka fixture: a fresh context and an empty scene per test (*state points to it). */
+typedef struct scene_fixture {
+    struct ppm_context_t *context;
+    struct ppm_scene_t *scene;
+} scene_fixture;
+int scene_fixture_setup(void **state);
+int scene_fixture_teardown(void **state);
+
 /* Deterministic random numbers (splitmix64) so failures reproduce. */
 typedef struct test_rng {
     uint64_t state;
