@@ -342,6 +342,9 @@ bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchR
     first.a0 = first.b0 = 0;
     first.a1 = first.b1 = 1;
     const Projected top = first.cp;
+    Region whole_patch;
+    whole_patch.a0 = whole_patch.b0 = 0;
+    whole_patch.a1 = whole_patch.b1 = 1;
     // The frame is a rotation: the largest projected coordinate is within sqrt(3) of the
     // largest coordinate of (control point - origin).
     const Bounds2 top_box = bounds_of(top);
@@ -380,11 +383,19 @@ bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchR
         // Below the tolerance (or at the limit of the parameters' precision) the region is a
         // point on the surface within the tolerance of the ray.
         if (extent <= point_size || (wa <= 1e-15 && wb <= 1e-15)) {
-            double a, b, z;
-            if (!solver.newton(ca, cb, r, nullptr, a, b, z)) {
-                a = ca;
-                b = cb;
-                z = evaluate_z(top, ca, cb);
+            // A grazing ray stays within the tolerance of the surface over a stretch much
+            // longer than the tolerance, so the region's centre may lie well before the
+            // crossing, which can be just outside the region: let Newton roam the whole patch
+            // and take a root it finds nearby. Only where Newton finds none (tangent rays,
+            // collapsed edges) is the centre itself the answer.
+            double a = ca, b = cb, z = evaluate_z(top, ca, cb);
+            double root_a, root_b, root_z;
+            if (solver.newton(ca, cb, r, nullptr, root_a, root_b, root_z) ||
+                (solver.newton(ca, cb, whole_patch, nullptr, root_a, root_b, root_z) &&
+                 std::fabs(root_z - z) <= 16 * point_size)) {
+                a = root_a;
+                b = root_b;
+                z = root_z;
             }
             if (accept(a, b, z) && query.any_hit) return true;
             continue;
