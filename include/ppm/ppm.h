@@ -238,6 +238,79 @@ PPM_API ppm_status ppm_scene_occluded(ppm_scene scene, const ppm_ray *rays, size
  * Pure function of its arguments; thread safe. */
 PPM_API ppm_status ppm_hit_spawn_ray(const ppm_hit *hit, const double dir[3], ppm_ray *out_ray);
 
+/* ---------------------------------------------------------------------------------------- */
+/* Tessellation: triangle meshes from Bezier patches (no context or scene needed)            */
+/* ---------------------------------------------------------------------------------------- */
+
+/* The result of a tessellation: immutable, reference counted like every handle. */
+typedef struct ppm_mesh_t *ppm_mesh;
+
+/* Tessellates bicubic Bezier patches (control points laid out as in
+ * ppm_scene_add_bezier_patches) into triangles. The caller owns the one reference returned.
+ *  - grid > 0: uniform, grid x grid quads per patch in (u, v), two triangles each (split
+ *    along the diagonal whose midpoint lies closer to the surface): exactly
+ *    2 * grid^2 * patch_count triangles. `tolerance` is ignored. At a collapsed edge half of
+ *    the first row's triangles have zero area, as in any uniform grid.
+ *  - grid == 0: adaptive. Every point of every triangle lies within `tolerance` (absolute,
+ *    finite, > 0) of the surface, as measured: each triangle is sampled on a barycentric grid,
+ *    each sample mapped to its patch's (u, v) by interpolating the vertex uvs, and its distance
+ *    to the patch found by Newton steps for the nearest point; patches that exceed the
+ *    tolerance are refined until none does. Triangles are spent where the surface bends: each
+ *    patch gets its own grid density per direction, and each patch edge a segment count
+ *    computed from that edge's curve alone, so patches that share an edge (the same four
+ *    control points, in either direction) agree on its vertices and the mesh has no cracks
+ *    there (an edge that meets parts of two other patches, a T-junction, is not stitched).
+ *    A collapsed edge (four equal control points, e.g. an apex) becomes one point with a fan
+ *    of triangles around it: no triangle has zero area. The result is deterministic.
+ * Vertices: each vertex belongs to one patch and carries that patch's (u, v) and its unit
+ * geometric normal (the limit normal on a collapsed edge), so a point on a seam is repeated
+ * once per patch (and an apex once per fan triangle), always at a bit-identical position.
+ * ppm_mesh_get_welded_vertices numbers the distinct positions; through it, every edge of the
+ * mesh is shared by exactly two triangles except along the patches' free borders.
+ * Triangles are counter-clockwise in (u, v): their winding normal agrees with dS/du x dS/dv.
+ * Errors: INVALID_ARGUMENT (NULL, patch_count 0 or above 10 000 000, a NaN or infinite
+ * coordinate naming the patch, tolerance not finite or <= 0 when grid == 0, grid > 4096, or
+ * a request estimated to need more than 200 000 000 triangles: refused before allocating),
+ * UNSUPPORTED (refinement could not reach the tolerance: it is below what double precision
+ * resolves on these patches, or a patch folds so sharply that the nearest-point search stalls).
+ * Thread safe; large requests use all hardware threads. */
+PPM_API ppm_status ppm_tessellate_patches(const double *control_points, size_t patch_count,
+                                          double tolerance, uint32_t grid, ppm_mesh *out_mesh);
+
+/* Adds / drops a reference (atomic: thread safe). Pointers returned by the getters stay valid
+ * until the last reference is released. */
+PPM_API ppm_status ppm_mesh_retain(ppm_mesh mesh);
+PPM_API void ppm_mesh_release(ppm_mesh mesh);
+
+/* Vertex arrays owned by the mesh: positions and normals 3 doubles per vertex, uvs 2 (the
+ * vertex's patch parameters). Any output pointer may be NULL if not wanted. Thread safe. */
+PPM_API ppm_status ppm_mesh_get_vertices(ppm_mesh mesh, const double **out_positions,
+                                         const double **out_normals, const double **out_uvs,
+                                         size_t *out_vertex_count);
+
+/* Triangles: 3 vertex indices each (into the arrays of ppm_mesh_get_vertices). Either output
+ * may be NULL. Thread safe. */
+PPM_API ppm_status ppm_mesh_get_triangles(ppm_mesh mesh, const uint32_t **out_indices,
+                                          size_t *out_triangle_count);
+
+/* For each triangle, the index of the patch it approximates. Thread safe. */
+PPM_API ppm_status ppm_mesh_get_triangle_patches(ppm_mesh mesh, const uint32_t **out_patch_ids);
+
+/* For each vertex, a welded index in 0 .. welded_count - 1 (numbered in order of first
+ * appearance): vertices on patch borders at bit-identical positions share one, every other
+ * vertex has its own. Replacing each triangle's vertex indices by these gives the welded,
+ * crack-free mesh (as an OBJ file's v/vt/vn triples do). Either output may be NULL. Thread
+ * safe. */
+PPM_API ppm_status ppm_mesh_get_welded_vertices(ppm_mesh mesh, const uint32_t **out_welded_ids,
+                                                size_t *out_welded_count);
+
+/* Floating-point properties of a mesh. Keys:
+ *   "max_deviation"  the largest distance from a triangle to the surface that the measurement
+ *                    described at ppm_tessellate_patches found (uniform grids are measured too)
+ *   "tolerance"      the requested tolerance; 0 for a uniform grid
+ * Errors: INVALID_ARGUMENT (NULL, unknown key). Thread safe. */
+PPM_API ppm_status ppm_mesh_get_double(ppm_mesh mesh, const char *key, double *out_value);
+
 #ifdef __cplusplus
 }
 #endif

@@ -4,10 +4,12 @@
 
 #include "core/context.h"
 #include "core/error.h"
+#include "core/ref_counted.h"
 #include "geometry/mesh_geometry.h"
 #include "geometry/patch_geometry.h"
 #include "geometry/quad_geometry.h"
 #include "geometry/sphere_geometry.h"
+#include "geometry/tessellate.h"
 #include "io/bpt_reader.h"
 #include "io/obj_reader.h"
 #include "scene/scene.h"
@@ -71,6 +73,24 @@ template <class Body> ppm_status scene_call(ppm_scene scene, Body &&body) noexce
 
 void write_id(uint32_t *out, uint32_t id) {
     if (out) *out = id;
+}
+
+// The patches of `control_points` (ppm_scene_add_bezier_patches' layout), checked.
+std::vector<ppm::BezierPatch> read_patches(const double *control_points, size_t patch_count) {
+    require(control_points, "control_points");
+    if (patch_count == 0) invalid_argument("patch_count is 0");
+    if (patch_count > ppm::max_bpt_patches)
+        invalid_argument("patch_count " + std::to_string(patch_count) + " exceeds the limit of " +
+                         std::to_string(ppm::max_bpt_patches));
+    std::vector<ppm::BezierPatch> patches(patch_count);
+    for (size_t p = 0; p < patch_count; ++p)
+        for (int k = 0; k < 16; ++k) {
+            patches[p].p[k] = ppm::Vec3::from(control_points + (p * 16 + k) * 3);
+            if (!ppm::is_finite(patches[p].p[k]))
+                invalid_argument("patch " + std::to_string(p) + " control point " + std::to_string(k) +
+                                 " has a NaN or infinite coordinate");
+        }
+    return patches;
 }
 
 // `make` validates its input and returns the new geometry (or throws).
@@ -194,20 +214,7 @@ ppm_status ppm_scene_get_double(ppm_scene scene, const char *key, double *out_va
 ppm_status ppm_scene_add_bezier_patches(ppm_scene scene, const double *control_points,
                                         size_t patch_count, uint32_t *out_geom_id) {
     return add_geometry(scene, out_geom_id, [&] {
-        require(control_points, "control_points");
-        if (patch_count == 0) invalid_argument("patch_count is 0");
-        if (patch_count > ppm::max_bpt_patches)
-            invalid_argument("patch_count " + std::to_string(patch_count) + " exceeds the limit of " +
-                             std::to_string(ppm::max_bpt_patches));
-        std::vector<ppm::BezierPatch> patches(patch_count);
-        for (size_t p = 0; p < patch_count; ++p)
-            for (int k = 0; k < 16; ++k) {
-                const double *c = control_points + (p * 16 + k) * 3;
-                patches[p].p[k] = ppm::Vec3::from(c);
-                if (!ppm::is_finite(patches[p].p[k]))
-                    invalid_argument("patch " + std::to_string(p) + " control point " + std::to_string(k) +
-                                     " has a NaN or infinite coordinate");
-            }
+        std::vector<ppm::BezierPatch> patches = read_patches(control_points, patch_count);
         return std::make_unique<ppm::PatchGeometry>(std::move(patches));
     });
 }
@@ -377,6 +384,109 @@ ppm_status ppm_hit_spawn_ray(const ppm_hit *hit, const double dir[3], ppm_ray *o
         d.store(out_ray->dir);
         out_ray->tnear = 0;
         out_ray->tfar = INFINITY;
+    });
+}
+
+} // extern "C"
+
+/* Tessellation ------------------------------------------------------------------------ */
+
+struct ppm_mesh_t : ppm::RefCounted {
+    ppm_mesh_t(ppm::PatchMesh m, double t) : mesh(std::move(m)), tolerance(t) {}
+    const ppm::PatchMesh mesh;
+    const double tolerance;
+};
+
+namespace {
+
+constexpr uint32_t max_tessellation_grid = 4096;
+
+
+template <class Body> ppm_status mesh_call(ppm_mesh mesh, Body &&body) noexcept {
+    return guarded(nullptr, [&] {
+        require(mesh, "mesh");
+        body(mesh->mesh);
+    });
+}
+
+template <class T> void write_out(T *out, T value) {
+    if (out) *out = value;
+}
+
+} // namespace
+
+extern "C" {
+
+ppm_status ppm_tessellate_patches(const double *control_points, size_t patch_count, double tolerance,
+                                  uint32_t grid, ppm_mesh *out_mesh) {
+    return guarded(nullptr, [&] {
+        require(out_mesh, "out_mesh");
+        const std::vector<ppm::BezierPatch> patches = read_patches(control_points, patch_count);
+        if (grid > max_tessellation_grid)
+            invalid_argument("grid " + std::to_string(grid) + " exceeds the limit of " +
+                             std::to_string(max_tessellation_grid));
+        if (grid == 0 && (!(tolerance > 0) || !std::isfinite(tolerance)))
+            invalid_argument("tolerance must be finite and > 0 for an adaptive tessellation (grid 0), not " +
+                             ppm::format_number(tolerance));
+        ppm::PatchMesh mesh =
+            grid > 0 ? ppm::tessellate_uniform(patches, grid) : ppm::tessellate_adaptive(patches, tolerance);
+        *out_mesh = new ppm_mesh_t(std::move(mesh), grid > 0 ? 0.0 : tolerance);
+    });
+}
+
+ppm_status ppm_mesh_retain(ppm_mesh mesh) {
+    return guarded(nullptr, [&] {
+        require(mesh, "mesh");
+        mesh->retain();
+    });
+}
+
+void ppm_mesh_release(ppm_mesh mesh) {
+    if (mesh) mesh->release();
+}
+
+ppm_status ppm_mesh_get_vertices(ppm_mesh mesh, const double **out_positions, const double **out_normals,
+                                 const double **out_uvs, size_t *out_vertex_count) {
+    return mesh_call(mesh, [&](const ppm::PatchMesh &m) {
+        write_out(out_positions, m.positions.data());
+        write_out(out_normals, m.normals.data());
+        write_out(out_uvs, m.uvs.data());
+        write_out(out_vertex_count, m.vertex_count());
+    });
+}
+
+ppm_status ppm_mesh_get_triangles(ppm_mesh mesh, const uint32_t **out_indices, size_t *out_triangle_count) {
+    return mesh_call(mesh, [&](const ppm::PatchMesh &m) {
+        write_out(out_indices, m.indices.data());
+        write_out(out_triangle_count, m.triangle_count());
+    });
+}
+
+ppm_status ppm_mesh_get_triangle_patches(ppm_mesh mesh, const uint32_t **out_patch_ids) {
+    return mesh_call(mesh, [&](const ppm::PatchMesh &m) {
+        require(out_patch_ids, "out_patch_ids");
+        *out_patch_ids = m.triangle_patch.data();
+    });
+}
+
+ppm_status ppm_mesh_get_welded_vertices(ppm_mesh mesh, const uint32_t **out_welded_ids, size_t *out_welded_count) {
+    return mesh_call(mesh, [&](const ppm::PatchMesh &m) {
+        write_out(out_welded_ids, m.welded.data());
+        write_out(out_welded_count, size_t(m.welded_count));
+    });
+}
+
+ppm_status ppm_mesh_get_double(ppm_mesh mesh, const char *key, double *out_value) {
+    return guarded(nullptr, [&] {
+        require(mesh, "mesh");
+        require_key(key);
+        require(out_value, "out_value");
+        if (std::strcmp(key, "max_deviation") == 0)
+            *out_value = mesh->mesh.max_deviation;
+        else if (std::strcmp(key, "tolerance") == 0)
+            *out_value = mesh->tolerance;
+        else
+            invalid_argument(std::string("unknown mesh property '") + key + "' (known: max_deviation, tolerance)");
     });
 }
 

@@ -1,0 +1,337 @@
+// ppm-tess: tessellates the Bezier patches of a .bpt file into an OBJ (or PLY) triangle mesh
+// through libppm's public API, and reports how far the mesh lies from the surface.
+#include <ppm/ppm.h>
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+const char *const usage_text =
+    "usage: ppm-tess INPUT.bpt -o OUTPUT.obj [options]\n"
+    "Tessellates bicubic Bezier patches into triangles whose distance from the surface is\n"
+    "measured and held within a tolerance, or into a uniform grid.\n"
+    "options:\n"
+    "  -o, --output PATH   output file: OBJ (v, vt, vn, f v/vt/vn; seam vertices welded),\n"
+    "                      or PLY when PATH ends in .ply or with --ply\n"
+    "  --tolerance E       largest distance from the surface, absolute (default: 1e-3\n"
+    "                      of the bounding-box diagonal of the control points)\n"
+    "  --relative          E is relative to that diagonal\n"
+    "  --grid N            uniform N x N quads per patch instead (1..4096)\n"
+    "  --ply               write ASCII PLY (x y z nx ny nz u v per vertex; seam vertices\n"
+    "                      repeated once per patch, at identical positions)\n"
+    "  -h, --help          this text\n"
+    "  --version           print the libppm version\n"
+    "The triangle count and the measured deviation (absolute and relative) go to stderr.\n"
+    "Exit status: 0 ok, 1 usage error, 2 runtime error.\n";
+
+struct Options {
+    std::string input, output;
+    double tolerance = 1e-3;
+    bool relative = true; // the default tolerance is relative; an explicit one is absolute
+    bool tolerance_given = false, relative_given = false;
+    uint32_t grid = 0;
+    bool ply = false;
+};
+
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+bool ends_with(const std::string &text, const char *suffix) {
+    const size_t n = std::strlen(suffix);
+    return text.size() >= n && text.compare(text.size() - n, n, suffix) == 0;
+}
+
+double parse_number(const std::string &option, const char *text) {
+    char *end = nullptr;
+    const double value = std::strtod(text, &end);
+    if (end == text || *end != '\0' || !std::isfinite(value))
+        throw UsageError(option + " needs a finite number, not '" + text + "'");
+    return value;
+}
+
+Options parse_arguments(int argc, char **argv) {
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        const auto value = [&]() -> const char * {
+            if (i + 1 >= argc) throw UsageError(arg + " needs a value");
+            return argv[++i];
+        };
+        if (arg == "-o" || arg == "--output") {
+            o.output = value();
+        } else if (arg == "--tolerance") {
+            o.tolerance = parse_number(arg, value());
+            o.tolerance_given = true;
+            if (!(o.tolerance > 0)) throw UsageError("--tolerance must be > 0");
+        } else if (arg == "--relative") {
+            o.relative_given = true;
+        } else if (arg == "--grid") {
+            const double grid = parse_number(arg, value());
+            if (grid < 1 || grid > 4096 || grid != std::floor(grid))
+                throw UsageError("--grid needs an integer in 1..4096");
+            o.grid = static_cast<uint32_t>(grid);
+        } else if (arg == "--ply") {
+            o.ply = true;
+        } else if (!arg.empty() && arg[0] == '-') {
+            throw UsageError("unknown option '" + arg + "'");
+        } else if (o.input.empty()) {
+            o.input = arg;
+        } else {
+            throw UsageError("more than one input file ('" + o.input + "', '" + arg + "')");
+        }
+    }
+    if (o.input.empty()) throw UsageError("no input file");
+    if (o.output.empty()) throw UsageError("no output file (-o)");
+    if (o.grid && (o.tolerance_given || o.relative_given))
+        throw UsageError("--grid and --tolerance/--relative exclude each other");
+    if (o.tolerance_given) o.relative = o.relative_given;
+    if (ends_with(o.output, ".ply") || ends_with(o.output, ".PLY")) o.ply = true;
+    return o;
+}
+
+// .bpt: a patch count, then per patch "3 3" and 16 lines "x y z"; '#' starts a comment.
+// Errors name the file and line.
+class BptReader {
+public:
+    explicit BptReader(const std::string &path) : path_(path), in_(path) {
+        if (!in_) throw std::runtime_error(path + ": cannot open: " + std::strerror(errno));
+    }
+
+    std::vector<double> read() {
+        const double count = number("the patch count");
+        if (count < 1 || count > 1e7 || count != std::floor(count))
+            fail("the patch count must be an integer in 1..10000000");
+        std::vector<double> points;
+        points.reserve(static_cast<size_t>(count) * 48);
+        for (size_t p = 0; p < static_cast<size_t>(count); ++p) {
+            const double du = number("a degree line"), dv = number("a degree line");
+            if (du != 3 || dv != 3) fail("patch " + std::to_string(p) + " is not bicubic (degree line must be '3 3')");
+            for (int k = 0; k < 48; ++k) points.push_back(number("a control point coordinate"));
+        }
+        std::string extra;
+        if (next_token(extra)) fail("unexpected '" + extra + "' after the last patch");
+        return points;
+    }
+
+private:
+    [[noreturn]] void fail(const std::string &what) const {
+        throw std::runtime_error(path_ + ":" + std::to_string(line_) + ": " + what);
+    }
+
+    bool next_token(std::string &token) {
+        while (!(words_ >> token) || token[0] == '#') {
+            std::string line;
+            if (!std::getline(in_, line)) return false;
+            ++line_;
+            line = line.substr(0, line.find('#'));
+            words_.clear();
+            words_.str(line);
+        }
+        return true;
+    }
+
+    double number(const char *what) {
+        std::string token;
+        if (!next_token(token)) fail(std::string("the file ends where ") + what + " should be");
+        char *end = nullptr;
+        const double value = std::strtod(token.c_str(), &end);
+        if (end == token.c_str() || *end != '\0') fail("'" + token + "' is not a number (" + what + ")");
+        if (!std::isfinite(value)) fail("'" + token + "' is not finite");
+        return value;
+    }
+
+    std::string path_;
+    std::ifstream in_;
+    std::istringstream words_;
+    int line_ = 0;
+};
+
+double diagonal(const std::vector<double> &points) {
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t k = 0; k < points.size(); ++k) {
+        lo[k % 3] = std::fmin(lo[k % 3], points[k]);
+        hi[k % 3] = std::fmax(hi[k % 3], points[k]);
+    }
+    return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                     (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+// Shortest of %.15g / %.17g that reads back as the same double: exact, and short for the
+// many coordinates that are short decimals.
+const char *exact(double value, char buffer[32]) {
+    std::snprintf(buffer, 32, "%.15g", value);
+    if (std::strtod(buffer, nullptr) != value) std::snprintf(buffer, 32, "%.17g", value);
+    return buffer;
+}
+
+struct MeshView {
+    const double *positions = nullptr, *normals = nullptr, *uvs = nullptr;
+    size_t vertex_count = 0;
+    const uint32_t *indices = nullptr;
+    size_t triangle_count = 0;
+    const uint32_t *welded = nullptr;
+    size_t welded_count = 0;
+};
+
+void write_obj(std::FILE *out, const MeshView &m, const std::string &input) {
+    std::fprintf(out, "# ppm-tess %s from %s: %zu triangles\n", ppm_version_string(), input.c_str(),
+                 m.triangle_count);
+    // One v per distinct position, vt and vn per vertex: the faces share positions across
+    // seams (the mesh is closed there) while keeping each patch's (u, v) and normal.
+    std::vector<size_t> first(m.welded_count, SIZE_MAX);
+    for (size_t v = 0; v < m.vertex_count; ++v)
+        if (first[m.welded[v]] == SIZE_MAX) first[m.welded[v]] = v;
+    char a[32], b[32], c[32];
+    for (size_t w = 0; w < m.welded_count; ++w) {
+        const double *p = m.positions + 3 * first[w];
+        std::fprintf(out, "v %s %s %s\n", exact(p[0], a), exact(p[1], b), exact(p[2], c));
+    }
+    for (size_t v = 0; v < m.vertex_count; ++v)
+        std::fprintf(out, "vt %s %s\n", exact(m.uvs[2 * v], a), exact(m.uvs[2 * v + 1], b));
+    for (size_t v = 0; v < m.vertex_count; ++v) {
+        const double *n = m.normals + 3 * v;
+        std::fprintf(out, "vn %s %s %s\n", exact(n[0], a), exact(n[1], b), exact(n[2], c));
+    }
+    for (size_t t = 0; t < m.triangle_count; ++t) {
+        const uint32_t *c = m.indices + 3 * t;
+        std::fprintf(out, "f %u/%u/%u %u/%u/%u %u/%u/%u\n", m.welded[c[0]] + 1, c[0] + 1, c[0] + 1,
+                     m.welded[c[1]] + 1, c[1] + 1, c[1] + 1, m.welded[c[2]] + 1, c[2] + 1, c[2] + 1);
+    }
+}
+
+void write_ply(std::FILE *out, const MeshView &m, const std::string &input) {
+    std::fprintf(out,
+                 "ply\nformat ascii 1.0\ncomment ppm-tess %s from %s\nelement vertex %zu\n"
+                 "property double x\nproperty double y\nproperty double z\n"
+                 "property double nx\nproperty double ny\nproperty double nz\n"
+                 "property double u\nproperty double v\n"
+                 "element face %zu\nproperty list uchar uint vertex_indices\nend_header\n",
+                 ppm_version_string(), input.c_str(), m.vertex_count, m.triangle_count);
+    char text[8][32];
+    for (size_t v = 0; v < m.vertex_count; ++v) {
+        const double *p = m.positions + 3 * v, *n = m.normals + 3 * v, *t = m.uvs + 2 * v;
+        std::fprintf(out, "%s %s %s %s %s %s %s %s\n", exact(p[0], text[0]), exact(p[1], text[1]),
+                     exact(p[2], text[2]), exact(n[0], text[3]), exact(n[1], text[4]), exact(n[2], text[5]),
+                     exact(t[0], text[6]), exact(t[1], text[7]));
+    }
+    for (size_t t = 0; t < m.triangle_count; ++t)
+        std::fprintf(out, "3 %u %u %u\n", m.indices[3 * t], m.indices[3 * t + 1], m.indices[3 * t + 2]);
+}
+
+// Writes through a temporary file in the same folder, renamed over `path` only when complete,
+// so that a failure never leaves a truncated file under the final name.
+template <class Write> void write_atomically(const std::string &path, Write &&write) {
+    std::string temp = path + ".XXXXXX";
+    const int fd = mkstemp(&temp[0]);
+    if (fd < 0) throw std::runtime_error(path + ": cannot create a temporary file beside it: " + std::strerror(errno));
+    std::FILE *out = fdopen(fd, "w");
+    if (!out) {
+        close(fd);
+        std::remove(temp.c_str());
+        throw std::runtime_error(path + ": " + std::strerror(errno));
+    }
+    write(out);
+    const bool failed = std::ferror(out) != 0;
+    const int saved_errno = errno;
+    if (std::fclose(out) != 0 || failed) {
+        std::remove(temp.c_str());
+        throw std::runtime_error(path + ": write failed: " + std::strerror(failed ? saved_errno : errno));
+    }
+    // mkstemp creates the file 0600; give it the permissions a plain fopen would have.
+    const mode_t mask = umask(0);
+    umask(mask);
+    chmod(temp.c_str(), 0666 & ~mask);
+    if (std::rename(temp.c_str(), path.c_str()) != 0) {
+        const int error = errno;
+        std::remove(temp.c_str());
+        throw std::runtime_error(path + ": cannot rename the temporary file: " + std::strerror(error));
+    }
+}
+
+void check(ppm_status status, const std::string &what) {
+    if (status != PPM_OK)
+        throw std::runtime_error(what + ": " + ppm_status_string(status) + ": " + ppm_last_error_message());
+}
+
+int run(const Options &o) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<double> points = BptReader(o.input).read();
+    const size_t patch_count = points.size() / 48;
+    const double diag = diagonal(points);
+    const double tolerance = o.relative ? o.tolerance * diag : o.tolerance;
+
+    ppm_mesh mesh = nullptr;
+    check(ppm_tessellate_patches(points.data(), patch_count, tolerance, o.grid, &mesh), o.input);
+    MeshView m;
+    double deviation = 0;
+    try {
+        check(ppm_mesh_get_vertices(mesh, &m.positions, &m.normals, &m.uvs, &m.vertex_count), o.input);
+        check(ppm_mesh_get_triangles(mesh, &m.indices, &m.triangle_count), o.input);
+        check(ppm_mesh_get_welded_vertices(mesh, &m.welded, &m.welded_count), o.input);
+        check(ppm_mesh_get_double(mesh, "max_deviation", &deviation), o.input);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (o.grid)
+            std::fprintf(stderr, "ppm-tess: %s: %zu patches, uniform grid %u: ", o.input.c_str(), patch_count, o.grid);
+        else
+            std::fprintf(stderr, "ppm-tess: %s: %zu patches, tolerance %.6g (%.6g of the diagonal %.6g): ",
+                         o.input.c_str(), patch_count, tolerance, tolerance / diag, diag);
+        std::fprintf(stderr, "%zu triangles, %zu vertices (%zu distinct positions); measured max deviation %.6g "
+                             "(%.6g of the diagonal); %.2f s\n",
+                     m.triangle_count, m.vertex_count, m.welded_count, deviation, deviation / diag, seconds);
+        write_atomically(o.output, [&](std::FILE *out) {
+            if (o.ply)
+                write_ply(out, m, o.input);
+            else
+                write_obj(out, m, o.input);
+        });
+    } catch (...) {
+        ppm_mesh_release(mesh);
+        throw;
+    }
+    ppm_mesh_release(mesh);
+    std::fprintf(stderr, "ppm-tess: wrote %s\n", o.output.c_str());
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+    for (int i = 1; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "-h") || !std::strcmp(argv[i], "--help")) {
+            std::fputs(usage_text, stdout);
+            return 0;
+        }
+        if (!std::strcmp(argv[i], "--version")) {
+            std::printf("%s\n", ppm_version_string());
+            return 0;
+        }
+    }
+    Options options;
+    try {
+        options = parse_arguments(argc, argv);
+    } catch (const UsageError &e) {
+        std::fprintf(stderr, "ppm-tess: %s\n%s", e.what(), usage_text);
+        return 1;
+    }
+    try {
+        return run(options);
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "ppm-tess: %s\n", e.what());
+        return 2;
+    }
+}
