@@ -2,12 +2,16 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <sstream>
 
 namespace bench {
 
 namespace {
+
+const char *const known_sets[] = {"random", "camera", "grazing", "seams", "poles", "leaving"};
+const char *const known_methods[] = {"exact", "newton", "embree", "adaptive", "cgal"};
 
 bool parse_integer(const std::string &text, long long low, long long high, long long &out) {
     if (text.empty()) return false;
@@ -19,11 +23,22 @@ bool parse_integer(const std::string &text, long long low, long long high, long 
     return true;
 }
 
+bool parse_double(const std::string &text, double low, double high, double &out) {
+    if (text.empty()) return false;
+    char *end = nullptr;
+    errno = 0;
+    const double value = std::strtod(text.c_str(), &end);
+    if (errno != 0 || *end != '\0' || !std::isfinite(value) || value < low || value > high) return false;
+    out = value;
+    return true;
+}
+
 std::vector<std::string> split(const std::string &text) {
     std::vector<std::string> items;
     std::istringstream in(text);
     std::string item;
-    while (std::getline(in, item, ',')) items.push_back(item);
+    while (std::getline(in, item, ','))
+        if (!item.empty()) items.push_back(item);
     return items;
 }
 
@@ -33,37 +48,96 @@ bool bad(const std::string &option, const std::string &value, const char *expect
     return false;
 }
 
+// A comma-separated list of integers in [low, high]; "none" (or an empty value) for none.
+bool integer_list(const std::string &option, const std::string &value, long long low, long long high,
+                  std::vector<int> &out) {
+    out.clear();
+    if (value == "none") return true;
+    for (const std::string &item : split(value)) {
+        long long n = 0;
+        if (!parse_integer(item, low, high, n)) return bad(option, value, "a list like 8,32 of grid sizes in [1, 4096], or none");
+        out.push_back(int(n));
+    }
+    return true;
+}
+
+bool double_list(const std::string &option, const std::string &value, double low, double high,
+                 std::vector<double> &out, const char *expected) {
+    out.clear();
+    if (value == "none") return true;
+    for (const std::string &item : split(value)) {
+        double x = 0;
+        if (!parse_double(item, low, high, x)) return bad(option, value, expected);
+        out.push_back(x);
+    }
+    return true;
+}
+
+template <size_t N>
+bool name_list(const std::string &option, const std::string &value, const char *const (&known)[N],
+               std::vector<std::string> &out, const char *expected) {
+    out = split(value);
+    for (const std::string &name : out)
+        if (std::find(std::begin(known), std::end(known), name) == std::end(known))
+            return bad(option, value, expected);
+    if (out.empty()) return bad(option, value, expected);
+    return true;
+}
+
 bool apply(const std::string &option, const std::string &value, IntersectOptions &o) {
     long long n = 0;
     if (option == "--bpt") {
         o.bpt_path = value;
     } else if (option == "--rays") {
         if (!parse_integer(value, 0, 100000000, n)) return bad(option, value, "an integer in [0, 1e8]");
-        o.random_rays = size_t(n);
+        o.rays = size_t(n);
     } else if (option == "--width" || option == "--height") {
         if (!parse_integer(value, 0, 16384, n)) return bad(option, value, "an integer in [0, 16384]");
         (option == "--width" ? o.width : o.height) = int(n);
-    } else if (option == "--grids") {
-        o.grids.clear();
-        for (const std::string &item : split(value)) {
-            if (!parse_integer(item, 1, 4096, n)) return bad(option, value, "a list like 32,128 of integers in [1, 4096]");
-            o.grids.push_back(int(n));
-        }
-        if (o.grids.empty()) return bad(option, value, "at least one grid size");
-    } else if (option == "--csv") {
-        o.csv_path = value;
+    } else if (option == "--sets") {
+        return name_list(option, value, known_sets, o.sets,
+                         "a list of random, camera, grazing, seams, poles, leaving");
+    } else if (option == "--angles") {
+        return double_list(option, value, 1e-12, 1.5, o.angles, "a list like 1e-3,1e-6 of angles in (0, 1.5] rad");
     } else if (option == "--methods") {
-        o.methods = split(value);
-        for (const std::string &m : o.methods)
-            if (m != "exact" && m != "embree" && m != "cgal")
-                return bad(option, value, "a list of exact, embree, cgal");
-        if (o.methods.empty()) return bad(option, value, "at least one method");
+        return name_list(option, value, known_methods, o.methods,
+                         "a list of exact, newton, embree, adaptive, cgal");
+    } else if (option == "--tolerances") {
+        return double_list(option, value, 1e-14, 1e-2, o.tolerances,
+                           "a list like 1e-6,1e-9 of scene tolerances in [1e-14, 1e-2]");
+    } else if (option == "--grids") {
+        return integer_list(option, value, 1, 4096, o.grids);
+    } else if (option == "--cgal-grids") {
+        return integer_list(option, value, 1, 4096, o.cgal_grids);
+    } else if (option == "--adaptive") {
+        return double_list(option, value, 1e-9, 1e-1, o.adaptive,
+                           "a list like 1e-3,1e-4 of mesh tolerances / diagonal in [1e-9, 0.1], or none");
+    } else if (option == "--cgal-adaptive") {
+        return double_list(option, value, 1e-9, 1e-1, o.cgal_adaptive,
+                           "a list like 1e-4 of mesh tolerances / diagonal in [1e-9, 0.1], or none");
+    } else if (option == "--threads") {
+        if (!parse_integer(value, 0, 1024, n)) return bad(option, value, "an integer in [0, 1024]");
+        o.threads = int(n);
+    } else if (option == "--min-time") {
+        if (!parse_double(value, 0, 60, o.min_seconds)) return bad(option, value, "seconds in [0, 60]");
     } else if (option == "--seed") {
         if (!parse_integer(value, 0, INT64_MAX, n)) return bad(option, value, "a non-negative integer");
         o.seed = uint64_t(n);
     } else if (option == "--list") {
         if (!parse_integer(value, 0, 1000000, n)) return bad(option, value, "a non-negative integer");
         o.max_listed = size_t(n);
+    } else if (option == "--explain") {
+        o.explain = value;
+    } else if (option == "--out") {
+        o.out_dir = value;
+    } else if (option == "--csv") {
+        o.csv_path = value;
+    } else if (option == "--stability-md") {
+        o.stability_path = value;
+    } else if (option == "--summary-md") {
+        o.summary_path = value;
+    } else if (option == "--chart") {
+        o.chart_dir = value;
     } else {
         std::fprintf(stderr, "ppm-bench intersect: unknown option '%s'\n", option.c_str());
         return false;
@@ -77,21 +151,48 @@ bool IntersectOptions::has_method(const std::string &name) const {
     return std::find(methods.begin(), methods.end(), name) != methods.end();
 }
 
+bool IntersectOptions::has_set(const std::string &name) const {
+    return std::find(sets.begin(), sets.end(), name) != sets.end();
+}
+
 void print_intersect_usage(std::FILE *out) {
+    const IntersectOptions d;
     std::fprintf(out,
         "usage: ppm-bench intersect [options]\n"
-        "Times libppm's exact patch intersector against Embree and CGAL on uniform\n"
-        "tessellations of the same patches (one thread each) and compares their hits.\n"
-        "  --bpt FILE          patches to load (default %s)\n"
-        "  --rays N            incoherent random rays (default 1000000; 0 skips the set)\n"
-        "  --width W --height H  pinhole camera rays (default 512 x 512; 0 skips the set)\n"
-        "  --grids LIST        segments per patch edge of the meshes (default 32,128)\n"
-        "  --methods LIST      any of exact,embree,cgal (default all)\n"
-        "  --csv FILE          also write the results as CSV\n"
-        "  --seed S            seed of the random rays (default 1)\n"
-        "  --list K            suspicious rays listed per class (default 5)\n"
-        "  -h, --help          this text\n",
-        IntersectOptions().bpt_path.c_str());
+        "Speed against accuracy of ray / Bezier patch intersection: libppm's exact intersector at\n"
+        "several tolerances, naive Newton methods, and tessellations traced by Embree and CGAL, all\n"
+        "judged ray by ray against an independent long-double reference intersector, on one thread\n"
+        "and on all threads.\n"
+        "  --bpt FILE            patches to load (default %s)\n"
+        "  --rays N              random rays (default %zu); grazing (per angle), seam and leaving\n"
+        "                        sets get N/4 rays each, poles N/10 (at least 1 each; 0 skips them)\n"
+        "  --width W --height H  camera rays (default %d x %d; 0 x 0 skips the set)\n"
+        "  --sets LIST           any of random,camera,grazing,seams,poles,leaving (default all)\n"
+        "  --angles LIST         grazing angles in radians (default 1e-2,1e-3,1e-4,1e-6)\n"
+        "  --methods LIST        any of exact,newton,embree,adaptive,cgal (default all; cgal if built)\n"
+        "  --tolerances LIST     exact method scene tolerances (default 1e-3,1e-6,1e-9,1e-12)\n"
+        "  --grids LIST          uniform grids traced by Embree (default 8,16,32,64,128)\n"
+        "  --cgal-grids LIST     uniform grids traced by CGAL (default 8,32,128)\n"
+        "  --adaptive LIST       adaptive meshes traced by Embree, tolerance / diagonal\n"
+        "                        (default 1e-3,1e-4,1e-5); 'none' for no mesh\n"
+        "  --cgal-adaptive LIST  adaptive meshes traced by CGAL (default 1e-4)\n"
+        "  --threads N           threads of the all-thread runs (default 0: all hardware threads;\n"
+        "                        1: single-thread runs only)\n"
+        "  --min-time S          trace each set again until S seconds have passed (default %g)\n"
+        "  --seed S              seed of all random ray sets (default %llu)\n"
+        "  --list K              disagreements with the reference listed per set (default %zu)\n"
+        "  --explain METHOD      whose disagreements to list, e.g. newton-r16 (default: exact-1e-9, or\n"
+        "                        the first exact method)\n"
+        "  --out DIR             directory of the outputs (created; default: current directory)\n"
+        "  --csv FILE            results, one row per ray set and method (default DIR/bench-results.csv)\n"
+        "  --stability-md FILE   markdown tables of miss and false-hit rates (default DIR/stability.md\n"
+        "                        with --out)\n"
+        "  --summary-md FILE     markdown summary table (default DIR/summary.md with --out)\n"
+        "  --chart DIR           write DIR/intersect.png and .svg with tools/bench/plot_bench.py\n"
+        "                        (needs python3 with matplotlib)\n"
+        "  -h, --help            this text\n",
+        d.bpt_path.c_str(), d.rays, d.width, d.height, d.min_seconds, (unsigned long long)d.seed,
+        d.max_listed);
 }
 
 ParseResult parse_intersect_args(int argc, char **argv, int first, IntersectOptions &options) {
@@ -112,10 +213,6 @@ ParseResult parse_intersect_args(int argc, char **argv, int first, IntersectOpti
     }
     if ((options.width == 0) != (options.height == 0)) {
         std::fprintf(stderr, "ppm-bench intersect: --width and --height must both be 0 or both positive\n");
-        return ParseResult::error;
-    }
-    if (options.random_rays == 0 && options.width == 0) {
-        std::fprintf(stderr, "ppm-bench intersect: no rays to trace (--rays 0 and a 0 x 0 image)\n");
         return ParseResult::error;
     }
     return ParseResult::run;

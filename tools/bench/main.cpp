@@ -12,7 +12,8 @@ void print_usage(std::FILE *out) {
     std::fprintf(out,
                  "usage: ppm-bench <command> [options]\n"
                  "commands:\n"
-                 "  intersect   exact patch intersection vs Embree / CGAL on tessellations\n"
+                 "  intersect   speed against accuracy of patch intersection: libppm, naive Newton,\n"
+                 "              Embree and CGAL on tessellations, against a long-double reference\n"
                  "options:\n"
                  "  -h, --help  this text ('ppm-bench <command> -h' for a command's options)\n"
                  "  --version   print the libppm version\n");

@@ -47,6 +47,15 @@ size_t resident_bytes() {
     return read == 2 ? resident * size_t(sysconf(_SC_PAGESIZE)) : 0;
 }
 
+double load_average() {
+    std::FILE *f = std::fopen("/proc/loadavg", "r");
+    if (!f) return -1;
+    double load = -1;
+    if (std::fscanf(f, "%lf", &load) != 1) load = -1;
+    std::fclose(f);
+    return load;
+}
+
 size_t MemoryDelta::take() const {
     const size_t heap = heap_bytes(), rss = resident_bytes();
     return std::max(heap > heap0_ ? heap - heap0_ : 0, rss > rss0_ ? rss - rss0_ : 0);

@@ -22,6 +22,8 @@ private:
 size_t heap_bytes();
 // Resident set size of the process, 0 where unknown.
 size_t resident_bytes();
+// The 1-minute load average of the machine, -1 where unknown.
+double load_average();
 
 // Memory taken by a structure built between construction and take(): the larger of the heap
 // and resident-set growth (allocators outside malloc show only in the latter, heap reuse only

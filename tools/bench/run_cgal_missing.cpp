@@ -7,7 +7,7 @@ namespace bench {
 
 bool cgal_available() { return false; }
 
-MethodRun run_cgal(const Mesh &, const std::vector<RaySet> &) {
+std::unique_ptr<Method> make_cgal_method(std::shared_ptr<const Mesh>) {
     throw std::runtime_error("this ppm-bench was built without CGAL");
 }
 

@@ -1,113 +1,72 @@
 #include "suspects.h"
 
-#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace bench {
 
 namespace {
 
-constexpr double agree_dt = 1e-3;  // relative to the diagonal; N = 32 errors are ~1e-4
-constexpr float grazing_cos = 0.05f;
-constexpr float edge_band = 0.02f;
-constexpr size_t explained_listed = 2; // a sample, to check the explanation by eye
-
-enum Kind { exact_miss, exact_false_hit, exact_wrong_t, kind_count };
-const char *const kind_names[kind_count] = {"exact miss", "exact false hit", "exact wrong t"};
-
-bool near_edge(const Trace &trace, size_t i) {
-    const float u = trace.u[i], v = trace.v[i];
-    return std::min({u, 1.0f - u, v, 1.0f - v}) < edge_band;
-}
-
-struct Case {
-    size_t ray;
-    Kind kind;
-    const char *explanation; // nullptr when unexplained
-};
-
-// The class of ray i, or kind_count when the exact result agrees with the meshes (or the
-// meshes disagree among themselves, which says nothing about the exact intersector).
-Kind classify(size_t i, const Trace &exact, const std::vector<const Trace *> &meshes, double diagonal) {
-    size_t mesh_hits = 0;
-    double t_min = INFINITY, t_max = -INFINITY;
-    for (const Trace *m : meshes) {
-        if (!std::isfinite(m->t[i])) continue;
-        ++mesh_hits;
-        t_min = std::min(t_min, m->t[i]);
-        t_max = std::max(t_max, m->t[i]);
-    }
-    const bool e = std::isfinite(exact.t[i]);
-    if (mesh_hits == 0) return e ? exact_false_hit : kind_count;
-    if (mesh_hits != meshes.size() || t_max - t_min > agree_dt * diagonal) return kind_count;
-    if (!e) return exact_miss;
-    // Tessellation moves the surface along its normal, so a ray at angle theta to the normal
-    // sees it moved by offset / cos(theta): compare the normal offset, not dt.
-    const double dt = std::max(std::fabs(exact.t[i] - t_min), std::fabs(exact.t[i] - t_max));
-    return dt * exact.cos_normal[i] > agree_dt * diagonal ? exact_wrong_t : kind_count;
-}
-
-void print_ray(std::FILE *out, const ppm_ray &ray, size_t index, const Trace &exact,
-               const std::vector<const MethodRun *> &mesh_runs, size_t set) {
-    std::fprintf(out, "    ray %zu org %.17g %.17g %.17g dir %.17g %.17g %.17g\n", index, ray.org[0],
-                 ray.org[1], ray.org[2], ray.dir[0], ray.dir[1], ray.dir[2]);
-    auto line = [&](const char *name, const Trace &t) {
-        if (std::isfinite(t.t[index]))
-            std::fprintf(out, "      %-12s t %.17g patch %u uv %.4f %.4f |cos| %.4f\n", name, t.t[index],
-                         t.patch[index], t.u[index], t.v[index], t.cos_normal[index]);
-        else
-            std::fprintf(out, "      %-12s miss\n", name);
-    };
-    line("exact", exact);
-    for (const MethodRun *m : mesh_runs) line(m->name.c_str(), m->traces[set]);
-}
+// An exact normal should agree with the reference to rounding; this leaves room for the
+// reference's limit normals (taken 1e-7 inside the patch) and float storage.
+constexpr double max_normal_error = 1.0; // degrees
 
 } // namespace
 
-void print_suspects(std::FILE *out, const std::vector<RaySet> &sets, const std::vector<MethodRun> &runs,
-                    const MethodRun &exact, double diagonal, size_t max_listed) {
-    std::vector<const MethodRun *> mesh_runs;
-    for (const MethodRun &run : runs)
-        if (&run != &exact) mesh_runs.push_back(&run);
-    if (mesh_runs.empty()) return;
-    const MethodRun *finest = *std::max_element(mesh_runs.begin(), mesh_runs.end(),
-        [](const MethodRun *a, const MethodRun *b) { return a->grid < b->grid; });
-
-    std::fprintf(out, "\nDisagreements with every mesh (%zu mesh runs agreeing within %g diagonal);\n"
-                      "explained = the exact or finest mesh hit is grazing (|cos| < %g) or within %g "
-                      "of a patch edge in (u, v):\n",
-                 mesh_runs.size(), agree_dt, grazing_cos, edge_band);
-    for (size_t s = 0; s < sets.size(); ++s) {
-        const Trace &e = exact.traces[s];
-        std::vector<const Trace *> meshes;
-        for (const MethodRun *m : mesh_runs) meshes.push_back(&m->traces[s]);
-        const Trace &witness = finest->traces[s];
-
-        size_t explained[kind_count] = {}, unexplained[kind_count] = {};
-        std::vector<Case> listed;
-        for (size_t i = 0; i < sets[s].rays.size(); ++i) {
-            const Kind kind = classify(i, e, meshes, diagonal);
-            if (kind == kind_count) continue;
-            // Either side's hit may be the grazing or edge one: a mesh bulging past a concave
-            // surface hits a ray that passes the surface at 1e-5, and the exact hit behind is
-            // then steep.
-            const char *why = nullptr;
-            for (const Trace *about : {&e, &witness}) {
-                if (!std::isfinite(about->t[i]) || why) continue;
-                if (about->cos_normal[i] < grazing_cos) why = "grazing";
-                else if (near_edge(*about, i)) why = "patch edge";
+void print_suspects(std::FILE *out, const std::vector<RaySet> &sets, const MethodResult &exact, double diagonal,
+                    size_t max_listed) {
+    // Only the exact method promises an accuracy.
+    const double tolerance = exact.info.family == "exact" ? exact.info.value : INFINITY;
+    if (std::isfinite(tolerance))
+        std::fprintf(out, "\nDisagreements of %s with the reference (miss, false hit, |dt| above the tolerance "
+                          "%g diag, or normal error above 1 degree):\n", exact.info.name.c_str(), tolerance);
+    else
+        std::fprintf(out, "\nDisagreements of %s with the reference (miss or false hit):\n", exact.info.name.c_str());
+    for (size_t s = 0; s < sets.size() && s < exact.traces.size(); ++s) {
+        const RayBatch &batch = sets[s].batch(exact.info.spawn_tolerance);
+        const Trace &trace = exact.traces[s];
+        // Rays by kind of disagreement, listed in order of severity.
+        std::vector<size_t> found[4];
+        for (size_t i = 0; i < trace.size(); ++i) {
+            double dt = 0;
+            const TruthRoot *match = nullptr;
+            const Outcome o = judge(trace, batch.rays, batch.truth, i, diagonal, &dt, &match);
+            int kind = -1;
+            if (o == Outcome::miss) kind = 0;
+            else if (o == Outcome::false_hit) kind = 1;
+            else if (o == Outcome::correct && std::isfinite(trace.t[i]) && dt > tolerance) kind = 2;
+            else if (o == Outcome::correct && match &&
+                     normal_error(&trace.ng[3 * i], batch.truth, i, match, diagonal) > max_normal_error)
+                kind = 3;
+            if (kind >= 0) found[kind].push_back(i);
+        }
+        static const char *const names[] = {"miss", "false hit", "|dt| above tolerance", "normal error"};
+        size_t listed = 0;
+        for (int kind = 0; kind < 4; ++kind) {
+            for (size_t i : found[kind]) {
+                if (listed++ >= max_listed) break;
+                double dt = 0;
+                judge(trace, batch.rays, batch.truth, i, diagonal, &dt);
+                const ppm_ray &r = batch.rays[i];
+                std::fprintf(out, "  %s ray %zu, %s: org %.17g %.17g %.17g dir %.17g %.17g %.17g tnear %.17g\n",
+                             sets[s].name.c_str(), i, names[kind], r.org[0], r.org[1], r.org[2], r.dir[0],
+                             r.dir[1], r.dir[2], r.tnear);
+                if (std::isfinite(trace.t[i]))
+                    std::fprintf(out, "    method:    t %.17g patch %u (|dt| %.3g diag) ng %.9g %.9g %.9g\n",
+                                 trace.t[i], trace.patch[i], dt, trace.ng[3 * i], trace.ng[3 * i + 1],
+                                 trace.ng[3 * i + 2]);
+                else
+                    std::fprintf(out, "    method:    miss\n");
+                for (const TruthRoot *root = batch.truth.begin(i); root != batch.truth.end(i); ++root)
+                    std::fprintf(out, "    reference: t %.17g patch %u normal %.9g %.9g %.9g%s\n", root->t,
+                                 root->patch, root->normal[0], root->normal[1], root->normal[2],
+                                 root->robust ? "" : " (tangent or too shallow: not robust)");
+                if (batch.truth.begin(i) == batch.truth.end(i)) std::fprintf(out, "    reference: no root\n");
             }
-            size_t &count = why ? explained[kind] : unexplained[kind];
-            if (count++ < (why ? explained_listed : max_listed)) listed.push_back({i, kind, why});
         }
-        for (int k = 0; k < kind_count; ++k)
-            std::fprintf(out, "  %-6s %-16s unexplained %7zu   grazing/edge %7zu\n", sets[s].name.c_str(),
-                         kind_names[k], unexplained[k], explained[k]);
-        for (const Case &c : listed) {
-            std::fprintf(out, "  %s, %s%s%s:\n", sets[s].name.c_str(), kind_names[c.kind],
-                         c.explanation ? ", explained: " : "", c.explanation ? c.explanation : "");
-            print_ray(out, sets[s].rays[c.ray], c.ray, e, mesh_runs, s);
-        }
+        const size_t counts[4] = {found[0].size(), found[1].size(), found[2].size(), found[3].size()};
+        std::fprintf(out, "  %-14s %6zu misses, %6zu false hits, %6zu beyond tolerance, %6zu normals off by > %g deg\n",
+                     sets[s].name.c_str(), counts[0], counts[1], counts[2], counts[3], max_normal_error);
     }
 }
 

@@ -1,34 +1,41 @@
-// Uniform tessellation of bicubic Bezier patches into triangles: the mesh baselines of the
-// benchmark. (A library API for this will come; until then it lives with the tool.)
+// Triangle meshes of the patches, made by libppm's ppm_tessellate_patches (uniform grids and
+// adaptive tessellations), in the form the mesh baselines consume.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace bench {
 
-// Each patch becomes an (n+1) x (n+1) grid of vertices at (u, v) = (c / n, r / n), vertex
-// (r, c) at patch * (n+1)^2 + r * (n+1) + c, and 2 n^2 triangles: cell (r, c) gives triangles
-// patch * 2n^2 + (r * n + c) * 2 + {0, 1}. Vertices are not shared between patches.
 struct Mesh {
-    int n = 0;
-    size_t patch_count = 0;
-    std::vector<double> positions; // 3 per vertex
-    std::vector<uint32_t> indices;  // 3 per triangle
+    std::string label;       // "N32" (uniform grid) or "adaptive-1e-4" (relative tolerance)
+    int grid = 0;            // segments per patch edge; 0 for an adaptive mesh
+    double relative_tolerance = 0; // adaptive: requested tolerance / diagonal
+    double deviation = 0;    // measured max distance from the patches / diagonal
+    double seconds = 0;      // wall time of ppm_tessellate_patches
+    // Welded, crack-free mesh: distinct positions and triangles indexing them.
+    std::vector<double> positions;    // 3 per welded vertex
+    std::vector<uint32_t> indices;    // 3 per triangle, into positions
+    // Per triangle corner (3 per triangle): the unit surface normal of that corner's unwelded
+    // vertex (its own patch's normal), for the interpolated shading normal of a hit.
+    std::vector<float> corner_normal; // 3 per corner
+    std::vector<uint32_t> triangle_patch;
 
     size_t vertex_count() const { return positions.size() / 3; }
     size_t triangle_count() const { return indices.size() / 3; }
-    size_t triangles_per_patch() const { return size_t(2) * n * n; }
+    // Bytes of positions + indices as an intersector would keep them in float / uint32.
+    size_t float_array_bytes() const { return vertex_count() * 12 + triangle_count() * 12; }
 };
 
-// `control_points`: 48 doubles per patch, P[i][j] at i * 4 + j; evaluated in double as
-// S(u, v) = sum_i B_i(v) sum_j B_j(u) P[i][j]. n in [1, 4096].
-Mesh tessellate_patches(const double *control_points, size_t patch_count, int n);
+// grid > 0: uniform grid x grid quads per patch; grid == 0: adaptive with absolute tolerance
+// relative_tolerance * diagonal. Throws with libppm's message on failure.
+Mesh tessellate(const std::vector<double> &control_points, int grid, double relative_tolerance,
+                double diagonal);
 
-// Patch index and patch parameters (u, v) of the point with barycentric coordinates (b1, b2)
-// (Embree's: weights of the triangle's second and third vertex) in triangle `tri`.
-void triangle_patch_uv(const Mesh &mesh, size_t tri, double b1, double b2, uint32_t *patch,
-                       double *u, double *v);
+// Interpolated unit shading normal at barycentric (b1, b2) (weights of the triangle's second
+// and third corner, Embree's convention) of triangle `tri`.
+void interpolate_normal(const Mesh &mesh, size_t tri, double b1, double b2, float out[3]);
 
 } // namespace bench
