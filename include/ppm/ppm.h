@@ -113,8 +113,11 @@ PPM_API void ppm_scene_release(ppm_scene scene);
 /* Floating-point settings of a scene. Keys:
  *   "tolerance"  accuracy of every reported hit, relative to the diagonal of the scene's
  *                bounding box: hit distance and point are within tolerance * diagonal of the
- *                exact ones. Default 1e-9; range [1e-14, 1e-2]. Looser is faster only where
+ *                exact ones. Default 1e-9; range [1e-14, 1e-2]. Looser is faster mainly where
  *                the surface is degenerate or the ray tangent; Newton converges anyway.
+ *                Below about 1e-11 the bound cannot hold for rays grazing the surface at
+ *                1e-6 rad or flatter: such a hit moves by eps / sin(angle) when the ray is
+ *                rounded to double, so no double-precision method can place it better.
  * A change takes effect at the next ppm_scene_commit.
  * Errors: INVALID_ARGUMENT (NULL, unknown key, value NaN or out of range). */
 PPM_API ppm_status ppm_scene_set_double(ppm_scene scene, const char *key, double value);

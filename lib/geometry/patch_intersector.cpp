@@ -188,6 +188,7 @@ enum class Verdict {
 
 struct Krawczyk {
     Verdict verdict = Verdict::undecided;
+    bool singular = false; // J(c) is (numerically) singular: no proof is possible here
     double start_a = 0.5, start_b = 0.5; // c - Y F(c): a Newton step from the centre
     double y00 = 0, y01 = 0, y10 = 0, y11 = 0; // Y = J(c)^-1 in the region's coordinates
     double contraction = 1;              // |I - Y J(X)| in the infinity norm
@@ -243,7 +244,10 @@ Krawczyk krawczyk_test(const Projected &p) {
     const Jet c = evaluate_jet(p, 0.5, 0.5);
     const double det = c.xa * c.yb - c.xb * c.ya;
     const double jnorm = std::fabs(c.xa) + std::fabs(c.xb) + std::fabs(c.ya) + std::fabs(c.yb);
-    if (!(std::fabs(det) > 1e-14 * jnorm * jnorm)) return k;
+    if (!(std::fabs(det) > 1e-14 * jnorm * jnorm)) {
+        k.singular = true;
+        return k;
+    }
     const double y00 = c.yb / det, y01 = -c.xb / det, y10 = -c.ya / det, y11 = c.xa / det;
     const double step_a = y00 * c.x + y01 * c.y, step_b = y10 * c.x + y11 * c.y;
 
@@ -354,6 +358,8 @@ bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchR
     // Projection and De Casteljau each add a few ulps of the coordinates' magnitude.
     const double noise = 64 * DBL_EPSILON * magnitude;
     const double point_size = std::max(query.tolerance, 16 * noise);
+    // Where the Jacobian is regular, undecided regions are split down to this size.
+    const double fine_size = std::max(1e-3 * point_size, 16 * noise);
     const Solver solver{top, patch.derivative_bound, std::max(noise, 1e-4 * query.tolerance),
                         0.1 * point_size, 0.05 * point_size};
     const double znear = query.tnear * ray.dir_length;
@@ -380,27 +386,6 @@ bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchR
         const double extent = std::max({box.xmax - box.xmin, box.ymax - box.ymin, box.zmax - box.zmin});
         const double wa = r.a1 - r.a0, wb = r.b1 - r.b0;
         const double ca = r.a0 + 0.5 * wa, cb = r.b0 + 0.5 * wb;
-        // Below the tolerance (or at the limit of the parameters' precision) the region is a
-        // point on the surface within the tolerance of the ray.
-        if (extent <= point_size || (wa <= 1e-15 && wb <= 1e-15)) {
-            // A grazing ray stays within the tolerance of the surface over a stretch much
-            // longer than the tolerance, so the region's centre may lie well before the
-            // crossing, which can be just outside the region: let Newton roam the whole patch
-            // and take a root it finds nearby. Only where Newton finds none (tangent rays,
-            // collapsed edges) is the centre itself the answer.
-            double a = ca, b = cb, z = evaluate_z(top, ca, cb);
-            double root_a, root_b, root_z;
-            if (solver.newton(ca, cb, r, nullptr, root_a, root_b, root_z) ||
-                (solver.newton(ca, cb, whole_patch, nullptr, root_a, root_b, root_z) &&
-                 std::fabs(root_z - z) <= 16 * point_size)) {
-                a = root_a;
-                b = root_b;
-                z = root_z;
-            }
-            if (accept(a, b, z) && query.any_hit) return true;
-            continue;
-        }
-
         const Krawczyk proof = krawczyk_test(r.cp);
         if (proof.verdict == Verdict::no_root) continue;
         if (proof.verdict == Verdict::one_root || proof.verdict == Verdict::at_most_one_root) {
@@ -409,6 +394,28 @@ bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchR
                 if (accept(a, b, z) && query.any_hit) return true;
                 continue;
             }
+        }
+
+        // Undecided and below the tolerance: the region is a point of the surface within the
+        // tolerance of the ray. Not before it is also singular (a tangent ray, a collapsed
+        // edge) or far below the tolerance, though: a grazing ray stays within the tolerance
+        // of the surface over a stretch much longer than the tolerance, so a merely small
+        // region may lie well before the crossing, or hold two close crossings.
+        const bool at_precision_limit = wa <= 1e-15 && wb <= 1e-15;
+        if ((extent <= point_size && (proof.singular || extent <= fine_size)) || at_precision_limit) {
+            // Newton may still reach a crossing just outside the region; only where it finds
+            // none is the centre itself the answer.
+            double a = ca, b = cb, z = evaluate_z(top, ca, cb);
+            double root_a, root_b, root_z;
+            if (solver.newton(ca, cb, r, nullptr, root_a, root_b, root_z) ||
+                (solver.newton(ca, cb, whole_patch, nullptr, root_a, root_b, root_z) &&
+                 std::fabs(root_z - z) <= point_size)) {
+                a = root_a;
+                b = root_b;
+                z = root_z;
+            }
+            if (accept(a, b, z) && query.any_hit) return true;
+            continue;
         }
 
         double along_a, along_b;
