@@ -1,0 +1,48 @@
+// Hit points (SPPM's visible points) as the photon pass sees them, and the visitor type the
+// two search structures (HitPointTree, HitPointGrid) call for every hit point a photon lands in.
+#pragma once
+
+#include "math/vec3.h"
+
+#include <cstdint>
+#include <type_traits>
+
+namespace ppm {
+
+// Where a camera path stopped on a non-specular surface, with the gather radius of its pixel.
+// The renderer keeps the rest (BSDF, path weight) in a parallel array with the same indices.
+struct HitPoint {
+    Vec3 position;
+    Vec3 normal;   // unit surface normal, for the renderer's back-side test
+    double r2 = 0; // gather radius squared; finite and >= 0
+    std::uint32_t pixel = 0;
+};
+
+// The one definition of "the photon is inside the hit point's radius", shared by the search
+// structures and the tests so they agree on photons exactly at the radius (they count).
+inline double distance2(const Vec3 &a, const Vec3 &b) {
+    const double dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
+    return dx * dx + dy * dy + dz * dz;
+}
+inline bool within_radius(double dist2, double r2) { return dist2 <= r2; }
+
+// Called once per hit point containing the photon, with the hit point's index in the array
+// the structure was built from and its squared distance to the photon. A function pointer
+// and a context rather than std::function: nothing is allocated per query.
+struct HitPointVisitor {
+    void (*visit)(void *context, std::uint32_t index, double dist2);
+    void *context;
+
+    void operator()(std::uint32_t index, double dist2) const { visit(context, index, dist2); }
+
+    // Wraps any callable f(std::uint32_t index, double dist2); f must outlive the visitor.
+    template <class F>
+    static HitPointVisitor of(F &f) {
+        return {[](void *c, std::uint32_t index, double dist2) {
+                    (*static_cast<std::remove_reference_t<F> *>(c))(index, dist2);
+                },
+                const_cast<void *>(static_cast<const void *>(&f))};
+    }
+};
+
+} // namespace ppm

@@ -1,0 +1,84 @@
+#include "render/camera.h"
+
+#include "core/error.h"
+#include "render/warp.h"
+
+#include <cmath>
+
+namespace ppm {
+
+namespace {
+
+void require_finite(const Vec3 &v, const char *name) {
+    if (!is_finite(v)) invalid_argument(std::string("camera ") + name + " is not finite");
+}
+
+} // namespace
+
+Camera::Camera(const CameraSettings &s) {
+    require_finite(s.origin, "origin");
+    require_finite(s.target, "target");
+    require_finite(s.up, "up");
+    if (!(s.fov > 0 && s.fov < 180))
+        invalid_argument("camera fov must lie in (0, 180) degrees, got " + format_number(s.fov));
+    if (s.width <= 0 || s.height <= 0)
+        invalid_argument("camera image size must be positive, got " + std::to_string(s.width) +
+                         " x " + std::to_string(s.height));
+    if (!(s.aperture_radius >= 0 && std::isfinite(s.aperture_radius)))
+        invalid_argument("camera aperture_radius must be finite and >= 0, got " +
+                         format_number(s.aperture_radius));
+    if (s.aperture_radius > 0 && !(s.focus_distance > 0 && std::isfinite(s.focus_distance)))
+        invalid_argument("camera focus_distance must be finite and > 0 for a thin lens, got " +
+                         format_number(s.focus_distance));
+
+    const Vec3 view = s.target - s.origin;
+    const double view_length = length(view);
+    if (!(view_length > 0)) invalid_argument("camera target equals its origin");
+    forward_ = view / view_length;
+    const double up_length = length(s.up);
+    if (!(up_length > 0)) invalid_argument("camera up vector is zero");
+    // |cross| = sin of the angle between up and the view: below ~1e-9 the frame is noise.
+    const Vec3 left = cross(s.up / up_length, forward_);
+    const double sin_angle = length(left);
+    if (!(sin_angle > 1e-9)) invalid_argument("camera up vector is parallel to the view direction");
+    left_ = left / sin_angle;
+    up_ = cross(forward_, left_);
+
+    origin_ = s.origin;
+    tan_half_fov_ = std::tan(0.5 * s.fov * (kPi / 180.0));
+    width_ = s.width;
+    height_ = s.height;
+    aspect_ = double(s.width) / double(s.height);
+    aperture_radius_ = s.aperture_radius;
+    focus_distance_ = s.focus_distance;
+}
+
+CameraRay Camera::generate_ray(double x, double y, double lens_u, double lens_v) const {
+    // Local direction to the film position on the plane z = 1 (Mitsuba's sample_to_camera).
+    const double px = (1.0 - 2.0 * x / width_) * tan_half_fov_;
+    const double py = (1.0 - 2.0 * y / height_) * tan_half_fov_ / aspect_;
+    if (aperture_radius_ <= 0) {
+        const Vec3 d = left_ * px + up_ * py + forward_;
+        return {origin_, normalize(d)};
+    }
+    double ax, ay;
+    square_to_uniform_disk_concentric(lens_u, lens_v, &ax, &ay);
+    ax *= aperture_radius_;
+    ay *= aperture_radius_;
+    // Focus point (px, py, 1) * focus_distance minus the aperture point (ax, ay, 0).
+    const Vec3 d = left_ * (px * focus_distance_ - ax) + up_ * (py * focus_distance_ - ay) +
+                   forward_ * focus_distance_;
+    return {origin_ + left_ * ax + up_ * ay, normalize(d)};
+}
+
+bool Camera::project(const Vec3 &p, double *x, double *y) const {
+    const Vec3 v = p - origin_;
+    const double z = dot(v, forward_);
+    if (!(z > 0)) return false;
+    const double px = dot(v, left_) / z, py = dot(v, up_) / z;
+    *x = 0.5 * (1.0 - px / tan_half_fov_) * width_;
+    *y = 0.5 * (1.0 - py * aspect_ / tan_half_fov_) * height_;
+    return true;
+}
+
+} // namespace ppm

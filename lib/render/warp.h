@@ -1,0 +1,46 @@
+// Maps from uniform numbers in [0,1)^2 to the few distributions the renderer samples, with
+// their densities. Same mappings as Mitsuba 3's `warp::` functions, so a sample sequence
+// lands on the same points in both renderers.
+#pragma once
+
+#include "math/vec3.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ppm {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInvPi = 1.0 / kPi;
+
+// Shirley and Chiu's concentric map onto the unit disk: low distortion, so stratified
+// samples stay stratified. Returns (x, y) in *x, *y.
+inline void square_to_uniform_disk_concentric(double u, double v, double *x, double *y) {
+    const double a = 2.0 * u - 1.0, b = 2.0 * v - 1.0;
+    if (a == 0 && b == 0) {
+        *x = *y = 0;
+        return;
+    }
+    double r, phi;
+    if (std::fabs(a) > std::fabs(b)) {
+        r = a;
+        phi = (kPi / 4.0) * (b / a);
+    } else {
+        r = b;
+        phi = kPi / 2.0 - (kPi / 4.0) * (a / b);
+    }
+    *x = r * std::cos(phi);
+    *y = r * std::sin(phi);
+}
+
+// Cosine-weighted upper hemisphere (z >= 0) by Malley's method: project the disk up.
+inline Vec3 square_to_cosine_hemisphere(double u, double v) {
+    double x, y;
+    square_to_uniform_disk_concentric(u, v, &x, &y);
+    return {x, y, std::sqrt(std::max(0.0, 1.0 - x * x - y * y))};
+}
+inline double square_to_cosine_hemisphere_pdf(const Vec3 &w) {
+    return w.z > 0 ? w.z * kInvPi : 0.0;
+}
+
+} // namespace ppm
