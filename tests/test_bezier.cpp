@@ -62,6 +62,10 @@ void evaluation_reproduces_bilinear_maps(void **) {
         assert_vec_close(d.du, b + w * v, 1e-13);
         assert_vec_close(d.dv, c + w * u, 1e-13);
         assert_vec_close(mixed_derivative(p, u, v), w, 1e-13);
+        const SecondDerivatives second = second_derivatives(p, u, v);
+        assert_vec_close(second.uu, {0, 0, 0}, 1e-12);
+        assert_vec_close(second.uv, w, 1e-13);
+        assert_vec_close(second.vv, {0, 0, 0}, 1e-12);
     }
 }
 
@@ -87,6 +91,10 @@ void derivatives_match_central_differences(void **) {
         const Vec3 dv = (evaluate(p, u, v + h) - evaluate(p, u, v - h)) / (2 * h);
         assert_vec_close(d.du, du, 1e-8);
         assert_vec_close(d.dv, dv, 1e-8);
+        const Vec3 duu = (evaluate_derivatives(p, u + h, v).du - evaluate_derivatives(p, u - h, v).du) / (2 * h);
+        const Vec3 dvv = (evaluate_derivatives(p, u, v + h).dv - evaluate_derivatives(p, u, v - h).dv) / (2 * h);
+        assert_vec_close(second_derivatives(p, u, v).uu, duu, 1e-7);
+        assert_vec_close(second_derivatives(p, u, v).vv, dvv, 1e-7);
     }
 }
 

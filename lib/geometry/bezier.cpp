@@ -31,7 +31,28 @@ SurfaceDerivatives evaluate_derivatives(const BezierPatch &patch, double u, doub
     bernstein3(v, bv);
     bernstein3_derivative(u, du);
     bernstein3_derivative(v, dv);
-    return {tensor_sum(patch, bu, bv), tensor_sum(patch, du, bv), tensor_sum(patch, bu, dv)};
+    // Each row's value and u-derivative once, shared by all three sums.
+    SurfaceDerivatives d;
+    for (int i = 0; i < 4; ++i) {
+        const Vec3 *row = &patch.p[4 * i];
+        const Vec3 r = row[0] * bu[0] + row[1] * bu[1] + row[2] * bu[2] + row[3] * bu[3];
+        const Vec3 ru = row[0] * du[0] + row[1] * du[1] + row[2] * du[2] + row[3] * du[3];
+        d.p += r * bv[i];
+        d.dv += r * dv[i];
+        d.du += ru * bv[i];
+    }
+    return d;
+}
+
+SecondDerivatives second_derivatives(const BezierPatch &patch, double u, double v) {
+    double bu[4], bv[4], du[4], dv[4], duu[4], dvv[4];
+    bernstein3(u, bu);
+    bernstein3(v, bv);
+    bernstein3_derivative(u, du);
+    bernstein3_derivative(v, dv);
+    bernstein3_second(u, duu);
+    bernstein3_second(v, dvv);
+    return {tensor_sum(patch, duu, bv), tensor_sum(patch, du, dv), tensor_sum(patch, bu, dvv)};
 }
 
 Vec3 mixed_derivative(const BezierPatch &patch, double u, double v) {

@@ -29,6 +29,13 @@ inline void bernstein3_derivative(double t, double d[4]) {
     d[3] = 3.0 * t * t;
 }
 
+inline void bernstein3_second(double t, double d[4]) {
+    d[0] = 6.0 * (1.0 - t);
+    d[1] = 18.0 * t - 12.0;
+    d[2] = 6.0 - 18.0 * t;
+    d[3] = 6.0 * t;
+}
+
 // One De Casteljau step on four values a[0], a[stride], a[2*stride], a[3*stride]: the curve
 // on [0, t] goes to `left`, the one on [t, 1] to `right` (same stride). Works in place for
 // the output arrays but not when `left` or `right` alias `a`.
@@ -47,9 +54,14 @@ struct SurfaceDerivatives {
     Vec3 p, du, dv;
 };
 
+struct SecondDerivatives {
+    Vec3 uu, uv, vv;
+};
+
 Vec3 evaluate(const BezierPatch &patch, double u, double v);
 SurfaceDerivatives evaluate_derivatives(const BezierPatch &patch, double u, double v);
 Vec3 mixed_derivative(const BezierPatch &patch, double u, double v);
+SecondDerivatives second_derivatives(const BezierPatch &patch, double u, double v);
 
 // Unit geometric normal dS/du x dS/dv. Where a derivative vanishes (a collapsed edge such as
 // the teapot's lid apex) the limit of the normalised cross product is returned, taken along

@@ -38,55 +38,6 @@ constexpr int max_refinements = 16;
 
 // ---- Bezier helpers ----------------------------------------------------------------------
 
-void bernstein3_second(double t, double d[4]) {
-    d[0] = 6.0 * (1.0 - t);
-    d[1] = 18.0 * t - 12.0;
-    d[2] = 6.0 - 18.0 * t;
-    d[3] = 6.0 * t;
-}
-
-Vec3 tensor_sum(const BezierPatch &patch, const double bu[4], const double bv[4]) {
-    Vec3 sum;
-    for (int i = 0; i < 4; ++i)
-        sum += (patch.at(i, 0) * bu[0] + patch.at(i, 1) * bu[1] + patch.at(i, 2) * bu[2] +
-                patch.at(i, 3) * bu[3]) * bv[i];
-    return sum;
-}
-
-struct SecondDerivatives {
-    Vec3 uu, uv, vv;
-};
-
-SecondDerivatives second_derivatives(const BezierPatch &patch, double u, double v) {
-    double bu[4], bv[4], du[4], dv[4], duu[4], dvv[4];
-    bernstein3(u, bu);
-    bernstein3(v, bv);
-    bernstein3_derivative(u, du);
-    bernstein3_derivative(v, dv);
-    bernstein3_second(u, duu);
-    bernstein3_second(v, dvv);
-    return {tensor_sum(patch, duu, bv), tensor_sum(patch, du, dv), tensor_sum(patch, bu, dvv)};
-}
-
-// S, dS/du and dS/dv: evaluate_derivatives with the rows shared, for the measuring loops.
-SurfaceDerivatives surface_point(const BezierPatch &patch, double u, double v) {
-    double bu[4], bv[4], du[4], dv[4];
-    bernstein3(u, bu);
-    bernstein3(v, bv);
-    bernstein3_derivative(u, du);
-    bernstein3_derivative(v, dv);
-    SurfaceDerivatives d;
-    for (int i = 0; i < 4; ++i) {
-        const Vec3 *row = &patch.p[4 * i];
-        const Vec3 r = row[0] * bu[0] + row[1] * bu[1] + row[2] * bu[2] + row[3] * bu[3];
-        const Vec3 ru = row[0] * du[0] + row[1] * du[1] + row[2] * du[2] + row[3] * du[3];
-        d.p += r * bv[i];
-        d.dv += r * dv[i];
-        d.du += ru * bv[i];
-    }
-    return d;
-}
-
 Vec3 curve_sum(const Vec3 c[4], const double b[4]) {
     return c[0] * b[0] + c[1] * b[1] + c[2] * b[2] + c[3] * b[3];
 }
@@ -605,7 +556,7 @@ double descend(const BezierPatch &patch, const Vec3 &x, double &u, double &v, Su
         bool moved = false, converged = false;
         for (int k = 0; k < 4 && !moved; ++k) {
             const double next_u = std::clamp(tries[k][0], 0.0, 1.0), next_v = std::clamp(tries[k][1], 0.0, 1.0);
-            const SurfaceDerivatives next = surface_point(patch, next_u, next_v);
+            const SurfaceDerivatives next = evaluate_derivatives(patch, next_u, next_v);
             const double dist2 = length2(next.p - x);
             if (!(dist2 < best)) continue;
             // A full step converges quadratically for the small residuals met here: after one
@@ -627,7 +578,7 @@ double descend(const BezierPatch &patch, const Vec3 &x, double &u, double &v, Su
 // x, that distance is returned without the steps: callers look for a maximum that is already
 // at least `floor`.
 double surface_distance(const BezierPatch &patch, const Vec3 &x, double u, double v, double floor) {
-    SurfaceDerivatives d = surface_point(patch, u, v);
+    SurfaceDerivatives d = evaluate_derivatives(patch, u, v);
     if (length2(d.p - x) <= floor * floor) return length(d.p - x);
     return std::sqrt(descend(patch, x, u, v, d));
 }
@@ -647,7 +598,7 @@ double surface_distance_in(const BezierPatch &patch, const Vec3 &x, double u0, d
                 best_v = v;
             }
         }
-    SurfaceDerivatives d = surface_point(patch, best_u, best_v);
+    SurfaceDerivatives d = evaluate_derivatives(patch, best_u, best_v);
     return std::sqrt(descend(patch, x, best_u, best_v, d));
 }
 
