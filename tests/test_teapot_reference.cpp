@@ -46,6 +46,8 @@
 namespace {
 
 using ref::real;
+using ref::cross;
+using ref::normalize;
 using ref::RootKind;
 
 // ---------------------------------------------------------------------------------------
@@ -390,15 +392,6 @@ void check(Tally &t, bool ok, const char *what, const ppm_ray &r, const ppm_hit 
 // ---------------------------------------------------------------------------------------
 // Geometry helpers on the reference's patches (long double).
 
-void normalize(real v[3]) {
-    const real l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    for (int c = 0; c < 3; ++c) v[c] /= l;
-}
-void cross(const real a[3], const real b[3], real c[3]) {
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 // Unit normal of patch `p` at (u, v); false where it is degenerate.
 bool unit_normal(int p, real u, real v, real s[3], real n[3]) {

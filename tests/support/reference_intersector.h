@@ -25,6 +25,7 @@
 // reported undecided, never answered from a partial search.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -103,5 +104,16 @@ private:
     real lower_[3], upper_[3];
     real diagonal_ = 0;
 };
+
+// Small long-double vector helpers for building rays through reference surface points.
+inline void normalize(real v[3]) {
+    const real l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    for (int c = 0; c < 3; ++c) v[c] /= l;
+}
+inline void cross(const real a[3], const real b[3], real c[3]) {
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
 
 } // namespace ref

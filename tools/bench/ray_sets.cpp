@@ -15,6 +15,8 @@ namespace {
 constexpr double pi = 3.14159265358979323846;
 constexpr double default_tolerance = 1e-9; // libppm's default scene tolerance
 using ref::real;
+using ref::cross;
+using ref::normalize;
 
 struct Vec {
     double x, y, z;
@@ -32,15 +34,6 @@ ppm_ray make_ray(Vec org, Vec dir) {
 }
 
 // Long-double helpers for rays built through known surface points.
-void normalize(real v[3]) {
-    const real l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    for (int c = 0; c < 3; ++c) v[c] /= l;
-}
-void cross(const real a[3], const real b[3], real c[3]) {
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 // A ray whose (rounded) line passes through `point` at distance `length` from its origin.
 ppm_ray ray_through(const real point[3], real dir[3], real length) {

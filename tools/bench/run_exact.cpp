@@ -1,4 +1,5 @@
 // libppm's exact intersector, through the public C API only.
+#include "check_status.h"
 #include "measure.h"
 #include "method.h"
 #include "ray_sets.h"
@@ -11,12 +12,6 @@
 namespace bench {
 
 namespace {
-
-void check(ppm_status status, const char *call) {
-    if (status != PPM_OK)
-        throw std::runtime_error(std::string(call) + ": " + ppm_status_string(status) + ": " +
-                                 ppm_last_error_message());
-}
 
 class ExactMethod final : public Method {
 public:

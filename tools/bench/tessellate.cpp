@@ -1,5 +1,6 @@
 #include "tessellate.h"
 
+#include "check_status.h"
 #include "measure.h"
 #include "ray_sets.h"
 
@@ -11,12 +12,6 @@
 namespace bench {
 
 namespace {
-
-void check(ppm_status status, const char *call) {
-    if (status != PPM_OK)
-        throw std::runtime_error(std::string(call) + ": " + ppm_status_string(status) + ": " +
-                                 ppm_last_error_message());
-}
 
 struct MeshHandle {
     ppm_mesh mesh = nullptr;
