@@ -377,7 +377,8 @@ bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchR
     };
 
     while (top_index > 0) {
-        const Region r = stack[--top_index];
+        // A reference: the children overwrite this slot only after their last use of r.
+        const Region &r = stack[--top_index];
         const Bounds2 box = bounds_of(r.cp);
         if (box.xmin > noise || box.xmax < -noise || box.ymin > noise || box.ymax < -noise) continue;
         if (box.zmax < znear - noise || box.zmin > zbest + noise) continue;
