@@ -314,6 +314,140 @@ PPM_API ppm_status ppm_mesh_get_welded_vertices(ppm_mesh mesh, const uint32_t **
  * Errors: INVALID_ARGUMENT (NULL, unknown key). Thread safe. */
 PPM_API ppm_status ppm_mesh_get_double(ppm_mesh mesh, const char *key, double *out_value);
 
+/* ---------------------------------------------------------------------------------------- */
+/* Materials, textures and lights (Mitsuba 3 names and units)                               */
+/* ---------------------------------------------------------------------------------------- */
+
+/* Materials get ids 0, 1, 2, ... in the order they are added; ppm_scene_set_geometry_material
+ * assigns one to a geometry. A scene without any material renders everything as diffuse grey
+ * 0.5; once it has materials, every geometry's id must name one (checked when a renderer is
+ * created). Colours are linear RGB; reflectances lie in [0, 1] per channel, indices of
+ * refraction are finite and > 0. All opaque materials are two-sided.
+ * Errors: INVALID_ARGUMENT naming the bad value. */
+/* Lambertian (Mitsuba `diffuse`, `reflectance`). */
+PPM_API ppm_status ppm_scene_add_diffuse_material(ppm_scene scene, const double reflectance[3],
+                                                  uint32_t *out_material_id);
+/* Perfect mirror (Mitsuba `conductor` with a tint: `specular_reflectance`). */
+PPM_API ppm_status ppm_scene_add_mirror_material(ppm_scene scene, const double specular_reflectance[3],
+                                                 uint32_t *out_material_id);
+/* Smooth glass with exact Fresnel (Mitsuba `dielectric`, `int_ior`, `ext_ior`; Mitsuba's
+ * defaults are 1.5046 and 1.000277). The surface normal must point outwards (to ext_ior). */
+PPM_API ppm_status ppm_scene_add_dielectric_material(ppm_scene scene, double int_ior, double ext_ior,
+                                                     uint32_t *out_material_id);
+/* Diffuse base under a smooth dielectric coat, like glazed porcelain (Mitsuba `plastic` with
+ * nonlinear = false: `diffuse_reflectance`, `int_ior`, `ext_ior`). */
+PPM_API ppm_status ppm_scene_add_coated_material(ppm_scene scene, const double diffuse_reflectance[3],
+                                                 double int_ior, double ext_ior,
+                                                 uint32_t *out_material_id);
+
+/* Gives a material (diffuse, mirror or coated) an image texture that replaces its colour.
+ * The file is read now through OpenImageIO (any format it reads; 8/16-bit images are decoded
+ * from sRGB to linear, float images taken as linear). Lookups are bilinear and repeat, at
+ * (s * scale[0] + offset[0], t * scale[1] + offset[1]) where (s, t) are the surface's texture
+ * coordinates: (u, v) of spheres (spherical mapping), quads (planar) and patches (per patch,
+ * or a patch set's rectangles), the vertex uvs of meshes. v = 0 is the image's top row (as in
+ * Mitsuba 3). scale and offset may be NULL for (1, 1) and (0, 0).
+ * Errors: INVALID_ARGUMENT (bad id, glass, non-finite or zero scale), IO (unreadable file; the
+ * message names it). */
+PPM_API ppm_status ppm_scene_set_material_texture(ppm_scene scene, uint32_t material_id, const char *path,
+                                                  const double scale[2], const double offset[2]);
+
+/* Maps one texture across a whole patch set: patch i's (u, v) in [0, 1]^2 maps linearly onto
+ * [rects[4i], rects[4i+2]] x [rects[4i+1], rects[4i+3]] in texture space (4 * patch count
+ * finite doubles). Errors: INVALID_ARGUMENT (not a patch geometry, NULL, NaN). */
+PPM_API ppm_status ppm_scene_set_patch_uv_rects(ppm_scene scene, uint32_t geom_id, const double *rects);
+
+/* Point light (Mitsuba `point`): `intensity` in W/sr per channel, power 4 pi intensity. */
+PPM_API ppm_status ppm_scene_add_point_light(ppm_scene scene, const double position[3],
+                                             const double intensity[3], uint32_t *out_light_id);
+/* Spot light (Mitsuba `spot`): `intensity` in W/sr on the axis from position to target, full
+ * out to beam_width degrees and falling linearly in angle to 0 at cutoff_angle degrees
+ * (0 < beam_width <= cutoff_angle <= 90; Mitsuba's defaults are 15 and 20). */
+PPM_API ppm_status ppm_scene_add_spot_light(ppm_scene scene, const double position[3],
+                                            const double target[3], const double intensity[3],
+                                            double cutoff_angle, double beam_width,
+                                            uint32_t *out_light_id);
+/* Makes a quad or sphere an area light (Mitsuba `area`): constant `radiance` (W/(m^2 sr) per
+ * channel) on the side the normal points to (quad: edge_u x edge_v; sphere: outside).
+ * Black turns it off. Errors: INVALID_ARGUMENT (other kinds, negative or NaN values). */
+PPM_API ppm_status ppm_scene_set_geometry_emission(ppm_scene scene, uint32_t geom_id,
+                                                   const double radiance[3]);
+
+/* ---------------------------------------------------------------------------------------- */
+/* Rendering: progressive photon mapping                                                     */
+/* ---------------------------------------------------------------------------------------- */
+
+typedef struct ppm_renderer_t *ppm_renderer;
+
+/* Look-at camera with Mitsuba 3's conventions (`perspective` / `thinlens` sensors with
+ * to_world = look_at(origin, target, up)): `fov` is the full angle in degrees along the
+ * image's x axis; image x grows to the right, y down; pixels are square. aperture_radius 0
+ * is a pinhole; a thin lens (aperture_radius > 0) focuses on the plane at focus_distance
+ * along the view axis. */
+typedef struct ppm_camera {
+    double origin[3];
+    double target[3];
+    double up[3];
+    double fov;             /* degrees, in (0, 180) */
+    uint32_t width, height; /* pixels, at most 2^28 in all */
+    double aperture_radius; /* scene units, >= 0 */
+    double focus_distance;  /* scene units, > 0 when aperture_radius > 0 */
+} ppm_camera;
+
+/* A renderer for a committed scene (kept alive by the renderer) seen through `camera`.
+ * Lights, materials and textures are read now; later scene changes do not reach it.
+ * Errors: INVALID_OPERATION (scene not committed), INVALID_ARGUMENT (camera, a geometry
+ * without a valid material, emission on a kind that cannot emit). */
+PPM_API ppm_status ppm_renderer_create(ppm_scene scene, const ppm_camera *camera,
+                                       ppm_renderer *out_renderer);
+PPM_API ppm_status ppm_renderer_retain(ppm_renderer renderer);
+PPM_API void ppm_renderer_release(ppm_renderer renderer);
+
+/* Settings (defaults):
+ *   "mode"                  string "sppm" (stochastic PPM, new eye pass each pass) or "ppm"
+ *                           (classic: hit points fixed by the first pass)      default "sppm"
+ *   "photons_per_pass"      int    1 .. 2^31                                  default 200000
+ *   "alpha"                 double radius reduction in (0, 1]                 default 2/3
+ *   "initial_radius"        double scene units; 0 = automatic                 default 0
+ *   "initial_radius_pixels" double automatic radius in pixel footprints > 0   default 2
+ *   "max_depth"             int    scattering events per path, 1 .. 1000      default 16
+ *   "seed"                  int    random sequence                            default 0
+ *   "hit_point_search"      string "grid" (hashed grid) or "kdtree"           default "grid"
+ *   "direct_lighting"       int    1: light sources by shadow rays; 0: by photons default 1
+ * Integer keys also accept set_double with a whole number. mode, seed, direct_lighting and
+ * the initial radius settings are fixed after the first pass (INVALID_OPERATION); unknown keys, wrong types and
+ * values out of range are INVALID_ARGUMENT. Read-only integers for get_int: "passes",
+ * "photons_emitted", "width", "height"; read-only doubles for get_double:
+ * "last_eye_pass_seconds", "last_photon_pass_seconds" (wall clock). */
+PPM_API ppm_status ppm_renderer_set_int(ppm_renderer renderer, const char *key, int64_t value);
+PPM_API ppm_status ppm_renderer_set_double(ppm_renderer renderer, const char *key, double value);
+PPM_API ppm_status ppm_renderer_set_string(ppm_renderer renderer, const char *key, const char *value);
+PPM_API ppm_status ppm_renderer_get_int(ppm_renderer renderer, const char *key, int64_t *out_value);
+PPM_API ppm_status ppm_renderer_get_double(ppm_renderer renderer, const char *key, double *out_value);
+/* Writes the string setting into out (NUL-terminated, truncated to capacity) and its full
+ * length to *out_length when out_length is not NULL. */
+PPM_API ppm_status ppm_renderer_get_string(ppm_renderer renderer, const char *key, char *out,
+                                           size_t capacity, size_t *out_length);
+
+/* Runs one pass on the context's threads: eye pass, photon pass (photons_per_pass photon
+ * paths), statistics update. Deterministic: the image after n passes depends only on the
+ * scene, camera and settings, not on the thread count. Errors: CANCELLED (ppm_renderer_cancel
+ * was called before or during the pass; the pass is discarded and the image unchanged),
+ * INVALID_OPERATION (another pass of this renderer is running, or the scene was modified). */
+PPM_API ppm_status ppm_render_pass(ppm_renderer renderer);
+
+/* Stops the running pass as soon as possible, or the next pass if none runs. Thread safe;
+ * the only renderer call that may overlap ppm_render_pass besides the readers below. */
+PPM_API ppm_status ppm_renderer_cancel(ppm_renderer renderer);
+
+/* Copies an image layer after the last completed pass into `out`, row-major from the
+ * top-left pixel: "radiance" (3 floats per pixel: linear RGB radiance, W/(m^2 sr)),
+ * "radius" (1 float: gather radius in scene units), "photons" (1 float: the pixel's
+ * alpha-reduced photon count N). `count` is the number of floats `out` holds; it must be at
+ * least width * height * channels. Thread safe, also during a pass. */
+PPM_API ppm_status ppm_renderer_get_layer(ppm_renderer renderer, const char *layer, float *out,
+                                          size_t count);
+
 #ifdef __cplusplus
 }
 #endif

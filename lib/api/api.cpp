@@ -1,5 +1,6 @@
-// The C ABI. The only file that sees handles: it checks arguments, calls the C++ objects and
-// turns every exception into a ppm_status plus the per-thread message.
+// The C ABI of contexts, scenes, ray queries and tessellation (api_render.cpp has materials,
+// lights and the renderer). Only lib/api sees handles: it checks arguments, calls the C++
+// objects and turns every exception into a ppm_status plus the per-thread message.
 #include <ppm/ppm.h>
 
 #include "core/context.h"
@@ -13,67 +14,17 @@
 #include "io/bpt_reader.h"
 #include "io/obj_reader.h"
 #include "scene/scene.h"
+#include "scene/spawn.h"
+#include "api/api_support.h"
 
 #include <cstring>
 #include <new>
 #include <string>
 
-struct ppm_context_t : ppm::Context {};
-struct ppm_scene_t : ppm::Scene {
-    using Scene::Scene;
-};
-
 namespace {
 
+using namespace ppm::api;
 using ppm::invalid_argument;
-
-thread_local std::string last_error;
-
-// Runs `body`, mapping exceptions to a status; reports failures to the context's callback.
-template <class Body> ppm_status guarded(const ppm::Context *context, Body &&body) noexcept {
-    ppm_status status = PPM_OK;
-    try {
-        body();
-        last_error.clear();
-        return PPM_OK;
-    } catch (const ppm::Error &e) {
-        status = e.status();
-        last_error = e.what();
-    } catch (const std::bad_alloc &) {
-        status = PPM_ERROR_OUT_OF_MEMORY;
-        last_error = "out of memory";
-    } catch (const std::exception &e) {
-        status = PPM_ERROR_INTERNAL;
-        last_error = std::string("internal error: ") + e.what();
-    } catch (...) {
-        status = PPM_ERROR_INTERNAL;
-        last_error = "internal error: unknown exception";
-    }
-    if (context) context->report_error(status, last_error.c_str());
-    return status;
-}
-
-template <class T> void require(const T *pointer, const char *name) {
-    if (!pointer) invalid_argument(std::string(name) + " is NULL");
-}
-
-void require_key(const char *key) { require(key, "key"); }
-
-ppm::Vec3 finite_point(const double *p, const char *name) {
-    require(p, name);
-    const ppm::Vec3 v = ppm::Vec3::from(p);
-    if (!ppm::is_finite(v)) invalid_argument(std::string(name) + " has a NaN or infinite coordinate");
-    return v;
-}
-
-template <class Body> ppm_status scene_call(ppm_scene scene, Body &&body) noexcept {
-    if (!scene) return guarded(nullptr, [] { invalid_argument("scene is NULL"); });
-    return guarded(&scene->context(), [&] { body(*scene); });
-}
-
-void write_id(uint32_t *out, uint32_t id) {
-    if (out) *out = id;
-}
 
 // The patches of `control_points` (ppm_scene_add_bezier_patches' layout), checked.
 std::vector<ppm::BezierPatch> read_patches(const double *control_points, size_t patch_count) {
@@ -100,6 +51,11 @@ template <class Make> ppm_status add_geometry(ppm_scene scene, uint32_t *out_geo
 
 } // namespace
 
+std::string &ppm::api::last_error() {
+    thread_local std::string message;
+    return message;
+}
+
 extern "C" {
 
 uint32_t ppm_version(void) { return PPM_VERSION; }
@@ -120,7 +76,7 @@ const char *ppm_status_string(ppm_status status) {
     return "unknown status";
 }
 
-const char *ppm_last_error_message(void) { return last_error.c_str(); }
+const char *ppm_last_error_message(void) { return last_error().c_str(); }
 
 /* Context ----------------------------------------------------------------------------- */
 
@@ -378,12 +334,7 @@ ppm_status ppm_hit_spawn_ray(const ppm_hit *hit, const double dir[3], ppm_ray *o
         const ppm::Vec3 p = ppm::Vec3::from(hit->p), n = ppm::Vec3::from(hit->ng);
         if (!ppm::is_finite(p) || !ppm::is_finite(n) || !std::isfinite(hit->p_error) || hit->p_error < 0)
             invalid_argument("hit has a NaN or infinite point, normal or p_error");
-        const double side = ppm::dot(d, n) >= 0 ? 1.0 : -1.0;
-        const ppm::Vec3 org = p + n * (2 * hit->p_error * side);
-        org.store(out_ray->org);
-        d.store(out_ray->dir);
-        out_ray->tnear = 0;
-        out_ray->tfar = INFINITY;
+        *out_ray = ppm::spawn_ray(*hit, d);
     });
 }
 

@@ -110,4 +110,15 @@ void MeshGeometry::describe_hit(const RayQuery &query, double tolerance, ppm_hit
     hit.p_error = tolerance + 32 * DBL_EPSILON * magnitude_;
 }
 
+void MeshGeometry::texture_coordinates(const ppm_hit &hit, double *s, double *t) const {
+    if (world_.uvs.empty() || hit.prim_id >= primitive_count()) {
+        Geometry::texture_coordinates(hit, s, t);
+        return;
+    }
+    const uint32_t *tri = &world_.indices[3 * hit.prim_id];
+    const double u = hit.u, v = hit.v, w = 1.0 - u - v;
+    *s = world_.uvs[2 * tri[0]] * w + world_.uvs[2 * tri[1]] * u + world_.uvs[2 * tri[2]] * v;
+    *t = world_.uvs[2 * tri[0] + 1] * w + world_.uvs[2 * tri[1] + 1] * u + world_.uvs[2 * tri[2] + 1] * v;
+}
+
 } // namespace ppm

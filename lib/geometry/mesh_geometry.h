@@ -25,6 +25,8 @@ public:
     Box3 prepare(const Affine &transform) override;
     RTCGeometry create_embree(RTCDevice device, const EmbreeFrame &frame) override;
     void describe_hit(const RayQuery &query, double tolerance, ppm_hit &hit) const override;
+    // Interpolated vertex uvs when the mesh has them, else the barycentric (u, v).
+    void texture_coordinates(const ppm_hit &hit, double *s, double *t) const override;
 
     const MeshData &world() const { return world_; }
 

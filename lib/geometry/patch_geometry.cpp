@@ -144,4 +144,14 @@ void PatchGeometry::describe_hit(const RayQuery &query, double tolerance, ppm_hi
     hit.p_error = tolerance + 32 * DBL_EPSILON * magnitude_[index];
 }
 
+void PatchGeometry::texture_coordinates(const ppm_hit &hit, double *s, double *t) const {
+    if (uv_rects_.size() != 4 * source_.size() || hit.prim_id >= source_.size()) {
+        Geometry::texture_coordinates(hit, s, t);
+        return;
+    }
+    const double *r = &uv_rects_[4 * hit.prim_id];
+    *s = r[0] + (r[2] - r[0]) * hit.u;
+    *t = r[1] + (r[3] - r[1]) * hit.v;
+}
+
 } // namespace ppm

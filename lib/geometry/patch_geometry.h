@@ -19,8 +19,14 @@ public:
     Box3 prepare(const Affine &transform) override;
     RTCGeometry create_embree(RTCDevice device, const EmbreeFrame &frame) override;
     void describe_hit(const RayQuery &query, double tolerance, ppm_hit &hit) const override;
+    // (u, v) of the patch, or mapped into the patch's rectangle when set_uv_rects was called.
+    void texture_coordinates(const ppm_hit &hit, double *s, double *t) const override;
 
     const std::vector<BezierPatch> &world_patches() const { return world_; }
+
+    // One texture across the set: patch i's (u, v) maps linearly onto
+    // [rects[4i], rects[4i+2]] x [rects[4i+1], rects[4i+3]]. Empty means per-patch (u, v).
+    void set_uv_rects(std::vector<double> rects) { uv_rects_ = std::move(rects); }
 
     struct SubPatch {
         ControlGrid grid;      // world space control points
@@ -37,6 +43,7 @@ public:
 
 private:
     std::vector<BezierPatch> source_;
+    std::vector<double> uv_rects_;
     std::vector<BezierPatch> world_;
     std::vector<double> scale_;     // per world patch: diagonal of its control points
     std::vector<double> magnitude_; // per world patch: largest absolute coordinate

@@ -22,6 +22,8 @@ public:
         EmbreeFrame frame;
     };
 
+    const Data &data() const { return data_; } // world space, valid after commit
+
 private:
     Vec3 source_[3];
     Data data_{};

@@ -23,6 +23,8 @@ public:
         EmbreeFrame frame;
     };
 
+    const Data &data() const { return data_; } // world space, valid after commit
+
 private:
     Vec3 source_center_;
     double source_radius_;

@@ -110,6 +110,16 @@ double Bsdf::coat_specular_probability(double fresnel_o) const {
     return total > 0 ? p_specular / total : 0.0;
 }
 
+double Bsdf::specular_probability(const Vec3 &wo) const {
+    switch (type_) {
+    case Type::Diffuse: return 0.0;
+    case Type::Mirror:
+    case Type::Dielectric: return 1.0;
+    case Type::Coated: return coat_specular_probability(fresnel_dielectric(std::fabs(wo.z), eta_));
+    }
+    return 0.0;
+}
+
 BsdfSample Bsdf::sample(const Vec3 &wo, double u_lobe, double u1, double u2,
                         TransportMode mode) const {
     BsdfSample s;

@@ -97,6 +97,10 @@ public:
     const Rgb &reflectance() const { return reflectance_; }
     double eta() const { return eta_; } // int_ior / ext_ior
 
+    // Probability that sample() picks a specular lobe for this wo: 1 for mirror and glass,
+    // 0 for diffuse, the coat's Fresnel-steered share for coated.
+    double specular_probability(const Vec3 &wo) const;
+
     // Samples wi given wo, from uniform numbers in [0, 1): u_lobe picks the lobe, (u1, u2) the
     // direction. Returns pdf == 0 (invalid) when nothing scatters.
     BsdfSample sample(const Vec3 &wo, double u_lobe, double u1, double u2,

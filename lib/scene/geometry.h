@@ -5,6 +5,7 @@
 #include <ppm/ppm.h>
 
 #include "math/vec3.h"
+#include "render/rgb.h"
 #include "scene/ray_query.h"
 
 #include <embree3/rtcore.h>
@@ -41,8 +42,16 @@ public:
     // Fills p, p_error, ng and ns of a hit from its t/u/v/prim_id.
     virtual void describe_hit(const RayQuery &query, double tolerance, ppm_hit &hit) const = 0;
 
+    // Texture coordinates (s, t) of a hit: its (u, v) unless the kind maps them (mesh vertex
+    // uvs, a patch set's per-patch rectangles).
+    virtual void texture_coordinates(const ppm_hit &hit, double *s, double *t) const {
+        *s = hit.u;
+        *t = hit.v;
+    }
+
     Affine transform;
     uint32_t material = 0;
+    Rgb emission; // area light radiance (quads and spheres only), black if none
 };
 
 // Pads a box so Embree's single-precision traversal keeps it (see EmbreeFrame).

@@ -1,0 +1,253 @@
+// The C ABI of materials, textures, lights and the renderer.
+#include <ppm/ppm.h>
+
+#include "api/api_support.h"
+#include "geometry/patch_geometry.h"
+#include "geometry/quad_geometry.h"
+#include "geometry/sphere_geometry.h"
+#include "render/renderer.h"
+
+#include <cmath>
+#include <cstring>
+
+struct ppm_renderer_t : ppm::Renderer {
+    using Renderer::Renderer;
+};
+
+namespace {
+
+using namespace ppm::api;
+using ppm::invalid_argument;
+
+ppm::Rgb read_color(const double *c, const char *name) {
+    require(c, name);
+    const ppm::Rgb rgb{c[0], c[1], c[2]};
+    if (!rgb.is_finite() || rgb.min() < 0)
+        invalid_argument(std::string(name) + " must be finite and >= 0 in every channel");
+    return rgb;
+}
+
+ppm::Rgb read_reflectance(const double *c, const char *name) {
+    const ppm::Rgb rgb = read_color(c, name);
+    if (rgb.max() > 1) invalid_argument(std::string(name) + " must be at most 1 in every channel (energy conservation)");
+    return rgb;
+}
+
+template <class Make> ppm_status add_material(ppm_scene scene, uint32_t *out_id, Make &&make) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        ppm::Material material{make(), nullptr, {}};
+        write_id(out_id, s.add_material(std::move(material)));
+    });
+}
+
+template <class Body> ppm_status renderer_call(ppm_renderer renderer, Body &&body) noexcept {
+    if (!renderer) return guarded(nullptr, [] { invalid_argument("renderer is NULL"); });
+    return guarded(&renderer->context(), [&] { body(*renderer); });
+}
+
+ppm::CameraSettings read_camera(const ppm_camera *camera) {
+    require(camera, "camera");
+    ppm::CameraSettings c;
+    c.origin = finite_point(camera->origin, "camera origin");
+    c.target = finite_point(camera->target, "camera target");
+    c.up = finite_point(camera->up, "camera up");
+    c.fov = camera->fov;
+    if (camera->width > (1u << 28) || camera->height > (1u << 28))
+        invalid_argument("camera width and height must be at most 2^28");
+    c.width = static_cast<int>(camera->width);
+    c.height = static_cast<int>(camera->height);
+    c.aperture_radius = camera->aperture_radius;
+    c.focus_distance = camera->focus_distance;
+    return c;
+}
+
+} // namespace
+
+extern "C" {
+
+ppm_status ppm_scene_add_diffuse_material(ppm_scene scene, const double reflectance[3], uint32_t *out_id) {
+    return add_material(scene, out_id, [&] { return ppm::Bsdf::diffuse(read_reflectance(reflectance, "reflectance")); });
+}
+
+ppm_status ppm_scene_add_mirror_material(ppm_scene scene, const double specular_reflectance[3], uint32_t *out_id) {
+    return add_material(scene, out_id, [&] {
+        return ppm::Bsdf::mirror(read_reflectance(specular_reflectance, "specular_reflectance"));
+    });
+}
+
+ppm_status ppm_scene_add_dielectric_material(ppm_scene scene, double int_ior, double ext_ior, uint32_t *out_id) {
+    return add_material(scene, out_id, [&] { return ppm::Bsdf::dielectric(int_ior, ext_ior); });
+}
+
+ppm_status ppm_scene_add_coated_material(ppm_scene scene, const double diffuse_reflectance[3], double int_ior,
+                                         double ext_ior, uint32_t *out_id) {
+    return add_material(scene, out_id, [&] {
+        return ppm::Bsdf::coated(read_reflectance(diffuse_reflectance, "diffuse_reflectance"), int_ior, ext_ior);
+    });
+}
+
+ppm_status ppm_scene_set_material_texture(ppm_scene scene, uint32_t material_id, const char *path,
+                                          const double scale[2], const double offset[2]) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        require(path, "path");
+        ppm::Material &material = s.material(material_id);
+        if (material.bsdf.type() == ppm::Bsdf::Type::Dielectric)
+            invalid_argument("material " + std::to_string(material_id) + " is glass, which has no colour to texture");
+        ppm::TextureMapping mapping;
+        if (scale) {
+            if (!std::isfinite(scale[0]) || !std::isfinite(scale[1]) || scale[0] == 0 || scale[1] == 0)
+                invalid_argument("texture scale must be finite and non-zero");
+            mapping.scale_u = scale[0];
+            mapping.scale_v = scale[1];
+        }
+        if (offset) {
+            if (!std::isfinite(offset[0]) || !std::isfinite(offset[1])) invalid_argument("texture offset must be finite");
+            mapping.offset_u = offset[0];
+            mapping.offset_v = offset[1];
+        }
+        material.texture = ppm::Texture::load(path);
+        material.mapping = mapping;
+    });
+}
+
+ppm_status ppm_scene_set_patch_uv_rects(ppm_scene scene, uint32_t geom_id, const double *rects) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        require(rects, "rects");
+        auto *patches = dynamic_cast<ppm::PatchGeometry *>(&s.geometry(geom_id));
+        if (!patches) invalid_argument("geometry " + std::to_string(geom_id) + " is not a patch set");
+        std::vector<double> values(rects, rects + 4 * patches->primitive_count());
+        for (size_t i = 0; i < values.size(); ++i)
+            if (!std::isfinite(values[i]))
+                invalid_argument("uv rect of patch " + std::to_string(i / 4) + " has a NaN or infinite value");
+        patches->set_uv_rects(std::move(values));
+    });
+}
+
+ppm_status ppm_scene_add_point_light(ppm_scene scene, const double position[3], const double intensity[3],
+                                     uint32_t *out_light_id) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        const ppm::Vec3 p = finite_point(position, "position");
+        write_id(out_light_id, s.add_light(ppm::Light::point(p, read_color(intensity, "intensity"))));
+    });
+}
+
+ppm_status ppm_scene_add_spot_light(ppm_scene scene, const double position[3], const double target[3],
+                                    const double intensity[3], double cutoff_angle, double beam_width,
+                                    uint32_t *out_light_id) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        const ppm::Vec3 p = finite_point(position, "position"), t = finite_point(target, "target");
+        write_id(out_light_id, s.add_light(ppm::Light::spot(p, t, read_color(intensity, "intensity"), cutoff_angle,
+                                                            beam_width)));
+    });
+}
+
+ppm_status ppm_scene_set_geometry_emission(ppm_scene scene, uint32_t geom_id, const double radiance[3]) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        ppm::Geometry &g = s.geometry(geom_id);
+        const ppm::Rgb rgb = read_color(radiance, "radiance");
+        if (!dynamic_cast<ppm::QuadGeometry *>(&g) && !dynamic_cast<ppm::SphereGeometry *>(&g))
+            invalid_argument("geometry " + std::to_string(geom_id) + " is a " + g.kind() +
+                             "; only quads and spheres can be area lights");
+        g.emission = rgb;
+    });
+}
+
+/* Renderer ---------------------------------------------------------------------------- */
+
+ppm_status ppm_renderer_create(ppm_scene scene, const ppm_camera *camera, ppm_renderer *out_renderer) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        require(out_renderer, "out_renderer");
+        *out_renderer = new ppm_renderer_t(s, read_camera(camera));
+    });
+}
+
+ppm_status ppm_renderer_retain(ppm_renderer renderer) {
+    return renderer_call(renderer, [](ppm::Renderer &r) { r.retain(); });
+}
+
+void ppm_renderer_release(ppm_renderer renderer) {
+    if (renderer) renderer->release();
+}
+
+ppm_status ppm_renderer_set_int(ppm_renderer renderer, const char *key, int64_t value) {
+    return renderer_call(renderer, [&](ppm::Renderer &r) {
+        require_key(key);
+        r.settings().set_int(key, value, r.started());
+    });
+}
+
+ppm_status ppm_renderer_set_double(ppm_renderer renderer, const char *key, double value) {
+    return renderer_call(renderer, [&](ppm::Renderer &r) {
+        require_key(key);
+        r.settings().set_double(key, value, r.started());
+    });
+}
+
+ppm_status ppm_renderer_set_string(ppm_renderer renderer, const char *key, const char *value) {
+    return renderer_call(renderer, [&](ppm::Renderer &r) {
+        require_key(key);
+        require(value, "value");
+        r.settings().set_string(key, value, r.started());
+    });
+}
+
+ppm_status ppm_renderer_get_int(ppm_renderer renderer, const char *key, int64_t *out_value) {
+    return renderer_call(renderer, [&](ppm::Renderer &r) {
+        require_key(key);
+        require(out_value, "out_value");
+        const std::string k = key;
+        if (k == "passes") *out_value = static_cast<int64_t>(r.passes());
+        else if (k == "photons_emitted") *out_value = static_cast<int64_t>(r.photons_emitted());
+        else if (k == "width") *out_value = r.width();
+        else if (k == "height") *out_value = r.height();
+        else *out_value = r.settings().get_int(k);
+    });
+}
+
+ppm_status ppm_renderer_get_double(ppm_renderer renderer, const char *key, double *out_value) {
+    return renderer_call(renderer, [&](ppm::Renderer &r) {
+        require_key(key);
+        require(out_value, "out_value");
+        const std::string k = key;
+        if (k == "last_eye_pass_seconds") *out_value = r.last_eye_seconds();
+        else if (k == "last_photon_pass_seconds") *out_value = r.last_photon_seconds();
+        else *out_value = r.settings().get_double(k);
+    });
+}
+
+ppm_status ppm_renderer_get_string(ppm_renderer renderer, const char *key, char *out, size_t capacity,
+                                   size_t *out_length) {
+    return renderer_call(renderer, [&](ppm::Renderer &r) {
+        require_key(key);
+        if (capacity > 0) require(out, "out");
+        const std::string value = r.settings().get_string(key);
+        if (capacity > 0) {
+            const size_t n = std::min(capacity - 1, value.size());
+            std::memcpy(out, value.data(), n);
+            out[n] = '\0';
+        }
+        if (out_length) *out_length = value.size();
+    });
+}
+
+ppm_status ppm_render_pass(ppm_renderer renderer) {
+    return renderer_call(renderer, [](ppm::Renderer &r) { r.render_pass(); });
+}
+
+ppm_status ppm_renderer_cancel(ppm_renderer renderer) {
+    return renderer_call(renderer, [](ppm::Renderer &r) { r.cancel(); });
+}
+
+ppm_status ppm_renderer_get_layer(ppm_renderer renderer, const char *layer, float *out, size_t count) {
+    return renderer_call(renderer, [&](ppm::Renderer &r) {
+        require(layer, "layer");
+        const size_t needed = static_cast<size_t>(r.width()) * r.height() * ppm::Renderer::layer_channels(layer);
+        require(out, "out");
+        if (count < needed)
+            invalid_argument("layer '" + std::string(layer) + "' needs " + std::to_string(needed) +
+                             " floats, out holds " + std::to_string(count));
+        r.read_layer(layer, out);
+    });
+}
+
+} // extern "C"

@@ -1,0 +1,239 @@
+// Camera paths: from the lens through mirrors and glass to the first surface that is not
+// purely specular, where a visible point is stored and its direct light estimated.
+#include "render/renderer.h"
+
+#include "scene/scene.h"
+#include "scene/spawn.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+namespace ppm {
+
+namespace {
+
+constexpr std::uint8_t kCameraStream = 0;
+constexpr std::uint8_t kDirectStream = 2; // PPM: direct light at the fixed points
+// PPM splits a pixel's path at glass at most this many times; further glass is sampled.
+constexpr int kSplitBudget = 16;
+
+ppm_ray camera_ray(const Camera &camera, std::uint32_t pixel, CounterRng &rng) {
+    const double x = pixel % camera.width() + rng.uniform();
+    const double y = pixel / camera.width() + rng.uniform();
+    const double lens_u = rng.uniform(), lens_v = rng.uniform();
+    const CameraRay cr = camera.generate_ray(x, y, lens_u, lens_v);
+    ppm_ray ray;
+    cr.origin.store(ray.org);
+    cr.direction.store(ray.dir);
+    ray.tnear = 0;
+    ray.tfar = INFINITY;
+    return ray;
+}
+
+} // namespace
+
+double Renderer::footprint_r2(double path_length) const {
+    const double r = settings_.initial_radius > 0
+                         ? settings_.initial_radius
+                         : settings_.initial_radius_pixels * path_length * camera_.pixel_size_at_unit_distance();
+    return r * r;
+}
+
+VisiblePoint Renderer::make_visible_point(const SurfacePoint &sp, const Vec3 &ray_dir, const Rgb &weight,
+                                          double path_length) const {
+    VisiblePoint vp;
+    vp.valid = true;
+    vp.p = sp.p;
+    vp.normal = dot(sp.ng, ray_dir) <= 0 ? sp.ng : -sp.ng;
+    vp.p_error = sp.hit.p_error;
+    vp.frame = sp.frame;
+    vp.wo_local = sp.wo_local;
+    vp.bsdf = sp.bsdf;
+    vp.weight = weight;
+    vp.initial_r2 = footprint_r2(path_length);
+    return vp;
+}
+
+// One sample on every light, with a shadow ray each.
+Rgb Renderer::direct_light(const VisiblePoint &vp, CounterRng &rng) const {
+    Rgb sum;
+    if (!settings_.direct_lighting) return sum;
+    for (const Light &light : render_scene_.lights()) {
+        const double u1 = rng.uniform(), u2 = rng.uniform();
+        const DirectLightSample ls = light.sample_direct(vp.p, u1, u2);
+        if (ls.radiance_over_pdf.is_black()) continue;
+        const Vec3 wi_local = vp.frame.to_local(ls.direction);
+        const Rgb f = vp.bsdf.eval(vp.wo_local, wi_local);
+        if (f.is_black()) continue;
+        // Stop short of the light's own surface (area lights are geometry too).
+        const double tfar = ls.distance * (1 - 1e-7) - 8 * vp.p_error;
+        if (tfar <= 0) continue;
+        if (render_scene_.occluded(spawn_ray(vp.p, vp.normal, vp.p_error, ls.direction, tfar))) continue;
+        sum += vp.weight * f * ls.radiance_over_pdf * std::fabs(wi_local.z);
+    }
+    return sum;
+}
+
+void Renderer::trace_sppm_path(std::uint32_t pixel, std::uint32_t pass) {
+    CounterRng rng(settings_.seed, kCameraStream, pass, pixel);
+    ppm_ray ray = camera_ray(camera_, pixel, rng);
+    VisiblePoint &vp = visible_[pixel];
+    vp.valid = false;
+    Rgb weight(1.0), direct;
+    double length = 0;
+    SurfacePoint sp;
+    for (int depth = 0; depth < settings_.max_depth; ++depth) {
+        if (!render_scene_.intersect(ray, sp)) break;
+        length += sp.hit.t;
+        direct += weight * sp.emitted;
+        const double u_lobe = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+        if (sp.bsdf.has_non_specular()) {
+            // The same test sample() makes: below p_specular it reflects off the coat.
+            const double p_specular = sp.bsdf.specular_probability(sp.wo_local);
+            if (u_lobe >= p_specular) {
+                vp = make_visible_point(sp, Vec3::from(ray.dir), weight / (1.0 - p_specular), length);
+                break;
+            }
+        }
+        const BsdfSample s = sp.bsdf.sample(sp.wo_local, u_lobe, u1, u2, TransportMode::Radiance);
+        if (!s.valid()) break;
+        weight *= s.weight;
+        if (weight.is_black()) break;
+        ray = spawn_ray(sp.hit, sp.frame.to_world(s.wi));
+    }
+    if (vp.valid) direct += direct_light(vp, rng);
+    pass_direct_[pixel] = direct;
+}
+
+// The visible points of one pixel's path in PPM mode, splitting at glass (both branches,
+// Fresnel-weighted) and at coats (a visible point for the diffuse base and a branch for the
+// reflection), and the emission seen along the way.
+struct SplitPaths {
+    std::vector<VisiblePoint> points;
+    Rgb emitted;
+};
+
+template <class Emit>
+void Renderer::trace_split_path(const ppm_ray &start, Rgb weight, int depth, double length, int &budget,
+                                std::uint32_t pixel, Emit &&emit) {
+    ppm_ray ray = start;
+    SurfacePoint sp;
+    for (; depth < settings_.max_depth; ++depth) {
+        if (!render_scene_.intersect(ray, sp)) return;
+        length += sp.hit.t;
+        emit(nullptr, weight * sp.emitted);
+        const Vec3 dir = Vec3::from(ray.dir);
+        if (sp.bsdf.has_non_specular()) {
+            const VisiblePoint vp = make_visible_point(sp, dir, weight, length);
+            emit(&vp, Rgb());
+            if (sp.bsdf.specular_probability(sp.wo_local) <= 0) return;
+            // Coat reflection: sample() with u_lobe = 0 takes the specular lobe, and
+            // weight * pdf is its Fresnel factor.
+            const BsdfSample s = sp.bsdf.sample(sp.wo_local, 0.0, 0.5, 0.5, TransportMode::Radiance);
+            if (!s.valid() || !s.is_specular) return;
+            weight *= s.weight * s.pdf;
+            ray = spawn_ray(sp.hit, sp.frame.to_world(s.wi));
+            continue;
+        }
+        const BsdfSample reflected = sp.bsdf.sample(sp.wo_local, 0.0, 0.5, 0.5, TransportMode::Radiance);
+        const BsdfSample transmitted =
+            sp.bsdf.sample(sp.wo_local, 1.0 - 0x1p-53, 0.5, 0.5, TransportMode::Radiance);
+        const bool two_branches = reflected.valid() && transmitted.valid() && reflected.pdf < 1 &&
+                                  transmitted.pdf < 1 && reflected.wi.z * transmitted.wi.z < 0;
+        if (two_branches && budget > 0) {
+            --budget;
+            trace_split_path(spawn_ray(sp.hit, sp.frame.to_world(reflected.wi)),
+                             weight * reflected.weight * reflected.pdf, depth + 1, length, budget, pixel, emit);
+            weight *= transmitted.weight * transmitted.pdf;
+            ray = spawn_ray(sp.hit, sp.frame.to_world(transmitted.wi));
+            continue;
+        }
+        // One branch: a mirror, total internal reflection, or glass beyond the split budget
+        // (sampled with the pixel's own random numbers, fixed for the whole render).
+        CounterRng rng(settings_.seed, kCameraStream, 0, (std::uint64_t(pixel) << 20) | std::uint64_t(depth) << 8 |
+                                                             static_cast<std::uint64_t>(budget & 0xFF));
+        const BsdfSample s = sp.bsdf.sample(sp.wo_local, rng.uniform(), 0.5, 0.5, TransportMode::Radiance);
+        if (!s.valid()) return;
+        weight *= s.weight;
+        ray = spawn_ray(sp.hit, sp.frame.to_world(s.wi));
+    }
+}
+
+void Renderer::eye_pass(std::uint32_t pass) {
+    const std::uint32_t pixels = static_cast<std::uint32_t>(camera_.width()) * camera_.height();
+    const double flux_scale = std::max(render_scene_.total_power().max(), 1e-300);
+    if (settings_.mode == RenderSettings::Mode::Sppm) {
+        if (slot_pixel_.empty()) {
+            slot_pixel_.resize(pixels);
+            for (std::uint32_t p = 0; p < pixels; ++p) slot_pixel_[p] = p;
+            stats_.assign(pixels, PixelStatistics{});
+            visible_.assign(pixels, VisiblePoint{});
+            pass_direct_.assign(pixels, Rgb());
+            flux_ = std::make_unique<FluxAccumulator>(pixels, flux_scale);
+        }
+        scene_->context().run([&] {
+            tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, pixels, 256), [&](const auto &range) {
+                if (cancelled()) return;
+                for (std::uint32_t p = range.begin(); p < range.end(); ++p) trace_sppm_path(p, pass);
+            });
+        });
+        return;
+    }
+
+    // PPM: the first pass fixes the slots. Rows are traced in parallel into their own lists,
+    // joined in row order so slot numbers do not depend on scheduling.
+    const int width = camera_.width(), height = camera_.height();
+    std::vector<SplitPaths> rows(height);
+    std::vector<std::vector<std::uint32_t>> row_pixels(height);
+    std::vector<std::vector<Rgb>> row_emitted(height);
+    scene_->context().run([&] {
+        tbb::parallel_for(0, height, [&](int y) {
+            if (cancelled()) return;
+            for (int x = 0; x < width; ++x) {
+                const std::uint32_t pixel = static_cast<std::uint32_t>(y) * width + x;
+                CounterRng rng(settings_.seed, kCameraStream, 0, pixel);
+                const ppm_ray ray = camera_ray(camera_, pixel, rng);
+                const size_t first = rows[y].points.size();
+                Rgb emitted;
+                int budget = kSplitBudget;
+                trace_split_path(ray, Rgb(1.0), 0, 0.0, budget, pixel, [&](const VisiblePoint *vp, const Rgb &e) {
+                    if (vp) rows[y].points.push_back(*vp);
+                    emitted += e;
+                });
+                if (rows[y].points.size() == first) rows[y].points.push_back(VisiblePoint{}); // no point
+                for (size_t k = first; k < rows[y].points.size(); ++k) {
+                    row_pixels[y].push_back(pixel);
+                    row_emitted[y].push_back(k == first ? emitted : Rgb());
+                }
+            }
+        });
+    });
+    slot_pixel_.clear();
+    visible_.clear();
+    fixed_emitted_.clear();
+    for (int y = 0; y < height; ++y) {
+        slot_pixel_.insert(slot_pixel_.end(), row_pixels[y].begin(), row_pixels[y].end());
+        visible_.insert(visible_.end(), rows[y].points.begin(), rows[y].points.end());
+        fixed_emitted_.insert(fixed_emitted_.end(), row_emitted[y].begin(), row_emitted[y].end());
+    }
+    stats_.assign(slot_pixel_.size(), PixelStatistics{});
+    pass_direct_.assign(slot_pixel_.size(), Rgb());
+    flux_ = std::make_unique<FluxAccumulator>(slot_pixel_.size(), flux_scale);
+}
+
+void Renderer::direct_pass(std::uint32_t pass) {
+    scene_->context().run([&] {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, slot_pixel_.size(), 256), [&](const auto &range) {
+            if (cancelled()) return;
+            for (std::size_t slot = range.begin(); slot < range.end(); ++slot) {
+                CounterRng rng(settings_.seed, kDirectStream, pass, slot);
+                const VisiblePoint &vp = visible_[slot];
+                pass_direct_[slot] = fixed_emitted_[slot] + (vp.valid ? direct_light(vp, rng) : Rgb());
+            }
+        });
+    });
+}
+
+} // namespace ppm

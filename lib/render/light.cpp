@@ -1,0 +1,192 @@
+#include "render/light.h"
+
+#include "core/error.h"
+#include "render/warp.h"
+
+#include <cmath>
+#include <string>
+
+namespace ppm {
+
+namespace {
+
+constexpr double kDegree = kPi / 180.0;
+
+void check_color(const Rgb &c, const char *name) {
+    if (!c.is_finite() || c.min() < 0)
+        invalid_argument(std::string("light ") + name + " must be finite and >= 0 in every channel");
+}
+
+void check_point(const Vec3 &p, const char *name) {
+    if (!is_finite(p)) invalid_argument(std::string("light ") + name + " has a NaN or infinite coordinate");
+}
+
+Vec3 uniform_sphere(double u1, double u2) {
+    const double z = 1.0 - 2.0 * u1, r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = 2.0 * kPi * u2;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+// Direction in a cone of half-angle acos(1 - one_minus_cos_max) around +z, uniform in solid angle.
+Vec3 uniform_cone(double u1, double u2, double one_minus_cos_max) {
+    const double cos_theta = 1.0 - u1 * one_minus_cos_max;
+    const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+    const double phi = 2.0 * kPi * u2;
+    return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
+}
+
+} // namespace
+
+Light Light::point(const Vec3 &position, const Rgb &intensity) {
+    check_point(position, "position");
+    check_color(intensity, "intensity");
+    Light l;
+    l.type_ = Type::Point;
+    l.position_ = position;
+    l.color_ = intensity;
+    l.power_ = intensity * (4.0 * kPi);
+    return l;
+}
+
+Light Light::spot(const Vec3 &position, const Vec3 &target, const Rgb &intensity,
+                  double cutoff_angle_degrees, double beam_width_degrees) {
+    check_point(position, "position");
+    check_point(target, "target");
+    check_color(intensity, "intensity");
+    if (!(length2(target - position) > 0)) invalid_argument("spot light target equals its position");
+    if (!(cutoff_angle_degrees > 0 && cutoff_angle_degrees <= 90))
+        invalid_argument("spot light cutoff_angle must be in (0, 90] degrees, not " + format_number(cutoff_angle_degrees));
+    if (!(beam_width_degrees > 0 && beam_width_degrees <= cutoff_angle_degrees))
+        invalid_argument("spot light beam_width must be in (0, cutoff_angle] degrees, not " + format_number(beam_width_degrees));
+    Light l;
+    l.type_ = Type::Spot;
+    l.position_ = position;
+    l.frame_ = Frame::from_normal(normalize(target - position));
+    l.color_ = intensity;
+    l.cutoff_ = cutoff_angle_degrees * kDegree;
+    l.beam_ = beam_width_degrees * kDegree;
+    l.cos_cutoff_ = std::cos(l.cutoff_);
+    l.cos_beam_ = std::cos(l.beam_);
+    // Power = 2 pi * integral of falloff(theta) sin(theta): 1 up to the beam width, then
+    // (cutoff - theta) / (cutoff - beam), whose integral has a closed form.
+    double solid_angle = 1.0 - l.cos_beam_;
+    if (l.cutoff_ > l.beam_)
+        solid_angle += (std::sin(l.beam_) - std::sin(l.cutoff_)) / (l.cutoff_ - l.beam_) + l.cos_beam_;
+    l.power_ = intensity * (2.0 * kPi * solid_angle);
+    return l;
+}
+
+Light Light::quad(const Vec3 &origin, const Vec3 &edge_u, const Vec3 &edge_v, const Rgb &radiance) {
+    check_point(origin, "origin");
+    check_color(radiance, "radiance");
+    const Vec3 n = cross(edge_u, edge_v);
+    if (!(length(n) > 0) || !is_finite(n)) invalid_argument("area light quad has zero area");
+    Light l;
+    l.type_ = Type::Quad;
+    l.position_ = origin;
+    l.edge_u_ = edge_u;
+    l.edge_v_ = edge_v;
+    l.area_ = length(n);
+    l.frame_ = Frame::from_normal(n / l.area_);
+    l.color_ = radiance;
+    l.power_ = radiance * (kPi * l.area_);
+    return l;
+}
+
+Light Light::sphere(const Vec3 &center, double radius, const Rgb &radiance) {
+    check_point(center, "center");
+    check_color(radiance, "radiance");
+    if (!(radius > 0) || !std::isfinite(radius)) invalid_argument("area light sphere radius must be > 0");
+    Light l;
+    l.type_ = Type::Sphere;
+    l.position_ = center;
+    l.radius_ = radius;
+    l.area_ = 4.0 * kPi * radius * radius;
+    l.color_ = radiance;
+    l.power_ = radiance * (kPi * l.area_);
+    return l;
+}
+
+Rgb Light::spot_intensity(double cos_theta) const {
+    if (cos_theta <= cos_cutoff_) return Rgb();
+    if (cos_theta >= cos_beam_) return color_;
+    return color_ * ((cutoff_ - std::acos(std::min(1.0, cos_theta))) / (cutoff_ - beam_));
+}
+
+EmittedPhoton Light::emit(double u1, double u2, double u3, double u4) const {
+    EmittedPhoton photon;
+    switch (type_) {
+    case Type::Point:
+        photon.origin = position_;
+        photon.direction = uniform_sphere(u1, u2);
+        photon.flux = power_;
+        break;
+    case Type::Spot: {
+        const double one_minus_cos = 1.0 - cos_cutoff_;
+        const Vec3 local = uniform_cone(u1, u2, one_minus_cos);
+        photon.origin = position_;
+        photon.direction = frame_.to_world(local);
+        photon.flux = spot_intensity(local.z) * (2.0 * kPi * one_minus_cos);
+        break;
+    }
+    case Type::Quad: {
+        const Vec3 local = square_to_cosine_hemisphere(u3, u4);
+        photon.direction = frame_.to_world(local);
+        photon.origin = position_ + edge_u_ * u1 + edge_v_ * u2 + frame_.n * surface_offset_;
+        photon.flux = power_; // L cos / (pdf_area * cos / pi) = pi L A
+        break;
+    }
+    case Type::Sphere: {
+        const Vec3 n = uniform_sphere(u1, u2);
+        photon.direction = Frame::from_normal(n).to_world(square_to_cosine_hemisphere(u3, u4));
+        photon.origin = position_ + n * (radius_ + surface_offset_);
+        photon.flux = power_;
+        break;
+    }
+    }
+    return photon;
+}
+
+DirectLightSample Light::sample_direct(const Vec3 &p, double u1, double u2) const {
+    DirectLightSample s;
+    switch (type_) {
+    case Type::Point:
+    case Type::Spot: {
+        const Vec3 to_light = position_ - p;
+        s.distance = length(to_light);
+        if (!(s.distance > 0)) return s;
+        s.direction = to_light / s.distance;
+        const Rgb intensity = type_ == Type::Point ? color_ : spot_intensity(-dot(s.direction, frame_.n));
+        s.radiance_over_pdf = intensity / (s.distance * s.distance);
+        return s;
+    }
+    case Type::Quad: {
+        const Vec3 q = position_ + edge_u_ * u1 + edge_v_ * u2;
+        const Vec3 to_light = q - p;
+        const double d2 = length2(to_light);
+        s.distance = std::sqrt(d2);
+        if (!(s.distance > 0)) return s;
+        s.direction = to_light / s.distance;
+        const double cos_light = -dot(s.direction, frame_.n);
+        if (cos_light > 0) s.radiance_over_pdf = color_ * (area_ * cos_light / d2);
+        return s;
+    }
+    case Type::Sphere: {
+        const Vec3 to_center = position_ - p;
+        const double dc2 = length2(to_center), r2 = radius_ * radius_;
+        if (!(dc2 > r2)) return s;
+        const double dc = std::sqrt(dc2);
+        const double cos_max = std::sqrt(1.0 - r2 / dc2);
+        const double one_minus_cos = (r2 / dc2) / (1.0 + cos_max); // no cancellation when far
+        const Vec3 local = uniform_cone(u1, u2, one_minus_cos);
+        s.direction = Frame::from_normal(to_center / dc).to_world(local);
+        // Nearer intersection of the sampled direction with the sphere.
+        const double b = dc * local.z, disc = std::max(0.0, r2 - (dc2 - b * b));
+        s.distance = std::max(0.0, b - std::sqrt(disc));
+        s.radiance_over_pdf = color_ * (2.0 * kPi * one_minus_cos);
+        return s;
+    }
+    }
+    return s;
+}
+
+} // namespace ppm

@@ -1,0 +1,72 @@
+// Light sources, in Mitsuba 3's units so scenes translate one to one:
+//  - point (`point`): `intensity` I in W/sr, power 4 pi I;
+//  - spot (`spot`): intensity I on the axis, full up to `beam_width` and falling linearly in
+//    angle to zero at `cutoff_angle` (src/emitters/spot.cpp, falloff_curve);
+//  - area (`area` on a `rectangle` or `sphere` shape): `radiance` L, emitted on the side the
+//    surface normal points to only (the quad's edge_u x edge_v, the sphere's outside), with
+//    power pi L A.
+// A light answers the two questions the renderer asks: a photon leaving it (emit) and the
+// light arriving at a point from one sample on it (sample_direct).
+#pragma once
+
+#include "math/frame.h"
+#include "math/vec3.h"
+#include "render/rgb.h"
+
+namespace ppm {
+
+struct EmittedPhoton {
+    Vec3 origin;
+    Vec3 direction; // unit
+    Rgb flux;       // power carried, as if this light emitted only this one photon
+};
+
+// One sample of the light arriving at a point.
+struct DirectLightSample {
+    Vec3 direction;          // unit, from the point towards the light
+    double distance = 0;     // to the sampled point on the light (for the shadow ray)
+    Rgb radiance_over_pdf;   // L(direction) / pdf(direction), solid angle measure; 0 if none
+};
+
+class Light {
+public:
+    enum class Type { Point, Spot, Quad, Sphere };
+
+    // Factories check their arguments (finite, non-negative colours; positive sizes; angles
+    // with 0 < beam_width <= cutoff_angle <= 90 degrees) and throw ppm::Error naming the bad one.
+    static Light point(const Vec3 &position, const Rgb &intensity);
+    static Light spot(const Vec3 &position, const Vec3 &target, const Rgb &intensity,
+                      double cutoff_angle_degrees, double beam_width_degrees);
+    static Light quad(const Vec3 &origin, const Vec3 &edge_u, const Vec3 &edge_v, const Rgb &radiance);
+    static Light sphere(const Vec3 &center, double radius, const Rgb &radiance);
+
+    Type type() const { return type_; }
+    Rgb power() const { return power_; }
+
+    // A photon from four uniform numbers in [0, 1). Area lights start it `surface_offset`
+    // off the surface so it does not hit its own emitter.
+    EmittedPhoton emit(double u1, double u2, double u3, double u4) const;
+    // Light at `p` from one point on the light picked by (u1, u2); radiance_over_pdf is zero
+    // when the sample sees the light's back or p is inside a spherical light.
+    DirectLightSample sample_direct(const Vec3 &p, double u1, double u2) const;
+
+    // Distance photons start off an area light's surface (the scene's hit tolerance).
+    void set_surface_offset(double offset) { surface_offset_ = offset; }
+
+private:
+    Light() = default;
+    Rgb spot_intensity(double cos_theta) const;
+
+    Type type_ = Type::Point;
+    Rgb color_;          // intensity (point, spot) or radiance (area)
+    Rgb power_;
+    Vec3 position_;      // point/spot position, quad origin, sphere centre
+    Vec3 edge_u_, edge_v_;
+    Frame frame_;        // spot: n = axis; quad: n = unit normal
+    double area_ = 0;
+    double radius_ = 0;
+    double cos_cutoff_ = 0, cos_beam_ = 1, cutoff_ = 0, beam_ = 0;
+    double surface_offset_ = 0;
+};
+
+} // namespace ppm

@@ -1,0 +1,84 @@
+#include "render/render_scene.h"
+
+#include "core/error.h"
+#include "geometry/quad_geometry.h"
+#include "geometry/sphere_geometry.h"
+
+#include <algorithm>
+
+namespace ppm {
+
+namespace {
+
+Light area_light(const Geometry &g, uint32_t geom_id, double offset) {
+    if (auto *quad = dynamic_cast<const QuadGeometry *>(&g)) {
+        const QuadGeometry::Data &d = quad->data();
+        Light light = Light::quad(d.origin, d.edge_u, d.edge_v, g.emission);
+        light.set_surface_offset(offset);
+        return light;
+    }
+    if (auto *sphere = dynamic_cast<const SphereGeometry *>(&g)) {
+        const SphereGeometry::Data &d = sphere->data();
+        Light light = Light::sphere(d.center, d.radius, g.emission);
+        light.set_surface_offset(offset);
+        return light;
+    }
+    invalid_argument("geometry " + std::to_string(geom_id) + " (" + g.kind() +
+                     ") emits light, but only quads and spheres can be area lights");
+}
+
+} // namespace
+
+RenderScene::RenderScene(const Scene &scene) : scene_(&scene) {
+    if (!scene.committed())
+        fail(PPM_ERROR_INVALID_OPERATION, "the scene must be committed before rendering");
+    const Material grey{Bsdf::diffuse(Rgb(0.5)), nullptr, {}};
+    // Photons leave area lights a little more than a hit's error bound off the surface.
+    const double offset = 4 * scene.absolute_tolerance() + 1e-12 * max_abs_component(scene.bounds().upper - scene.bounds().lower);
+    lights_ = scene.lights();
+    for (uint32_t id = 0; id < scene.geometry_count(); ++id) {
+        const Geometry &g = scene.geometry(id);
+        if (scene.materials().empty()) {
+            geometry_materials_.push_back(grey);
+        } else if (g.material < scene.materials().size()) {
+            geometry_materials_.push_back(scene.materials()[g.material]);
+        } else {
+            invalid_argument("geometry " + std::to_string(id) + " (" + g.kind() + ") has material id " +
+                             std::to_string(g.material) + ", but the scene has only " +
+                             std::to_string(scene.materials().size()) + " materials");
+        }
+        if (!g.emission.is_black()) lights_.push_back(area_light(g, id, offset));
+    }
+    double sum = 0;
+    for (const Light &light : lights_) {
+        total_power_ += light.power();
+        sum += light.power().mean();
+        light_cdf_.push_back(sum);
+    }
+    for (double &c : light_cdf_) c = sum > 0 ? c / sum : 0;
+}
+
+size_t RenderScene::pick_light(double u, double *probability) const {
+    const size_t i = std::min<size_t>(
+        std::upper_bound(light_cdf_.begin(), light_cdf_.end(), u) - light_cdf_.begin(), lights_.size() - 1);
+    *probability = light_cdf_[i] - (i > 0 ? light_cdf_[i - 1] : 0.0);
+    return i;
+}
+
+bool RenderScene::intersect(const ppm_ray &ray, SurfacePoint &out) const {
+    scene_->intersect(ray, out.hit);
+    if (out.hit.geom_id == PPM_INVALID_ID) return false;
+    const Geometry &g = scene_->geometry(out.hit.geom_id);
+    out.p = Vec3::from(out.hit.p);
+    out.ng = Vec3::from(out.hit.ng);
+    out.frame = Frame::from_normal(Vec3::from(out.hit.ns));
+    const Vec3 wo = normalize(Vec3::from(ray.dir)) * -1.0;
+    out.wo_local = out.frame.to_local(wo);
+    double s, t;
+    g.texture_coordinates(out.hit, &s, &t);
+    out.bsdf = geometry_materials_[out.hit.geom_id].at(s, t);
+    out.emitted = (!g.emission.is_black() && dot(out.ng, wo) > 0) ? g.emission : Rgb();
+    return true;
+}
+
+} // namespace ppm

@@ -1,0 +1,56 @@
+// What the renderer reads of a committed scene, gathered once when a renderer is created:
+// the lights (point and spot lights plus one area light per emitting quad or sphere) with
+// the probabilities photons pick them by, and a material for every geometry.
+#pragma once
+
+#include <ppm/ppm.h>
+
+#include "render/bsdf.h"
+#include "render/light.h"
+#include "render/material.h"
+#include "scene/scene.h"
+
+#include <vector>
+
+namespace ppm {
+
+// A surface point as the integrator sees it: the hit, its BSDF (texture applied) and the
+// shading frame. Directions in `frame` are local; `wo` points back along the arriving ray.
+struct SurfacePoint {
+    ppm_hit hit;
+    Vec3 p, ng;     // ng as stored (not flipped)
+    Frame frame;    // z = shading normal
+    Vec3 wo_local;  // unit
+    Bsdf bsdf = Bsdf::diffuse(Rgb(0.5));
+    Rgb emitted;    // radiance the surface emits towards wo (area lights, front side)
+};
+
+class RenderScene {
+public:
+    // Throws ppm::Error: INVALID_OPERATION if the scene is not committed, INVALID_ARGUMENT
+    // for a geometry whose material id names no material (when the scene has materials; a
+    // scene without any renders everything diffuse grey 0.5) or emission on a kind other
+    // than quad and sphere.
+    explicit RenderScene(const Scene &scene);
+
+    const Scene &scene() const { return *scene_; }
+    const std::vector<Light> &lights() const { return lights_; }
+    Rgb total_power() const { return total_power_; }
+
+    // Index of the light a photon starts from, chosen in proportion to mean power, and that
+    // probability. Requires total_power() to be non-zero.
+    size_t pick_light(double u, double *probability) const;
+
+    // Closest hit along ray, described; false on a miss.
+    bool intersect(const ppm_ray &ray, SurfacePoint &out) const;
+    bool occluded(const ppm_ray &ray) const { return scene_->occluded(ray); }
+
+private:
+    const Scene *scene_;
+    std::vector<Material> geometry_materials_; // one per geometry
+    std::vector<Light> lights_;
+    std::vector<double> light_cdf_;            // cumulative selection probabilities
+    Rgb total_power_;
+};
+
+} // namespace ppm

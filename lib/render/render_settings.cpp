@@ -1,0 +1,108 @@
+#include "render/render_settings.h"
+
+#include "core/error.h"
+
+#include <cmath>
+
+namespace ppm {
+
+namespace {
+
+const char *const kKeys =
+    "mode, photons_per_pass, alpha, initial_radius, initial_radius_pixels, max_depth, seed, "
+    "hit_point_search, direct_lighting";
+
+[[noreturn]] void unknown(const std::string &key, const char *type) {
+    invalid_argument("unknown " + std::string(type) + " render setting '" + key + "' (settings: " +
+                     kKeys + ")");
+}
+
+void require_not_started(const std::string &key, bool started) {
+    if (started) fail(PPM_ERROR_INVALID_OPERATION, "render setting '" + key + "' cannot change after the first pass");
+}
+
+} // namespace
+
+void RenderSettings::set_int(const std::string &key, std::int64_t value, bool started) {
+    if (key == "photons_per_pass") {
+        if (value < 1 || value > (std::int64_t(1) << 31))
+            invalid_argument("photons_per_pass must be in 1 .. 2^31, not " + std::to_string(value));
+        photons_per_pass = static_cast<std::uint64_t>(value);
+    } else if (key == "max_depth") {
+        if (value < 1 || value > 1000) invalid_argument("max_depth must be in 1 .. 1000, not " + std::to_string(value));
+        max_depth = static_cast<int>(value);
+    } else if (key == "seed") {
+        require_not_started(key, started);
+        seed = static_cast<std::uint64_t>(value);
+    } else if (key == "direct_lighting") {
+        require_not_started(key, started);
+        if (value != 0 && value != 1) invalid_argument("direct_lighting must be 0 or 1, not " + std::to_string(value));
+        direct_lighting = value == 1;
+    } else if (key == "alpha" || key == "initial_radius" || key == "initial_radius_pixels") {
+        set_double(key, static_cast<double>(value), started);
+    } else {
+        unknown(key, "integer");
+    }
+}
+
+void RenderSettings::set_double(const std::string &key, double value, bool started) {
+    if (!std::isfinite(value)) invalid_argument("render setting '" + key + "' must be finite, not " + format_number(value));
+    if (key == "alpha") {
+        if (!(value > 0 && value <= 1)) invalid_argument("alpha must be in (0, 1], not " + format_number(value));
+        alpha = value;
+    } else if (key == "initial_radius") {
+        require_not_started(key, started);
+        if (!(value >= 0)) invalid_argument("initial_radius must be >= 0 (0 = automatic), not " + format_number(value));
+        initial_radius = value;
+    } else if (key == "initial_radius_pixels") {
+        require_not_started(key, started);
+        if (!(value > 0 && value <= 1e6))
+            invalid_argument("initial_radius_pixels must be in (0, 1e6], not " + format_number(value));
+        initial_radius_pixels = value;
+    } else if (key == "photons_per_pass" || key == "max_depth" || key == "seed" || key == "direct_lighting") {
+        if (value != std::floor(value)) invalid_argument("render setting '" + key + "' must be a whole number");
+        set_int(key, static_cast<std::int64_t>(value), started);
+    } else {
+        unknown(key, "number");
+    }
+}
+
+void RenderSettings::set_string(const std::string &key, const std::string &value, bool started) {
+    if (key == "mode") {
+        require_not_started(key, started);
+        if (value == "sppm") mode = Mode::Sppm;
+        else if (value == "ppm") mode = Mode::Ppm;
+        else invalid_argument("mode must be \"sppm\" or \"ppm\", not \"" + value + "\"");
+    } else if (key == "hit_point_search") {
+        if (value == "grid") search = Search::Grid;
+        else if (value == "kdtree") search = Search::KdTree;
+        else invalid_argument("hit_point_search must be \"grid\" or \"kdtree\", not \"" + value + "\"");
+    } else {
+        unknown(key, "string");
+    }
+}
+
+std::int64_t RenderSettings::get_int(const std::string &key) const {
+    if (key == "photons_per_pass") return static_cast<std::int64_t>(photons_per_pass);
+    if (key == "max_depth") return max_depth;
+    if (key == "seed") return static_cast<std::int64_t>(seed);
+    if (key == "direct_lighting") return direct_lighting ? 1 : 0;
+    unknown(key, "integer");
+}
+
+double RenderSettings::get_double(const std::string &key) const {
+    if (key == "alpha") return alpha;
+    if (key == "initial_radius") return initial_radius;
+    if (key == "initial_radius_pixels") return initial_radius_pixels;
+    if (key == "photons_per_pass" || key == "max_depth" || key == "seed" || key == "direct_lighting")
+        return static_cast<double>(get_int(key));
+    unknown(key, "number");
+}
+
+std::string RenderSettings::get_string(const std::string &key) const {
+    if (key == "mode") return mode == Mode::Sppm ? "sppm" : "ppm";
+    if (key == "hit_point_search") return search == Search::Grid ? "grid" : "kdtree";
+    unknown(key, "string");
+}
+
+} // namespace ppm

@@ -1,0 +1,57 @@
+// The renderer's settings: one table of string keys with types, defaults and checks, so the
+// C API, ppm-render's --set and the docs agree.
+//
+// | key                | type   | default | meaning                                            |
+// |--------------------|--------|---------|----------------------------------------------------|
+// | mode               | string | sppm    | "sppm": new jittered eye pass every pass (Hachisuka |
+// |                    |        |         | and Jensen 2009); "ppm": hit points fixed by the    |
+// |                    |        |         | first eye pass, split at glass and coats (2008)     |
+// | photons_per_pass   | int    | 200000  | photon paths traced per pass, 1 .. 2^31             |
+// | alpha              | double | 2/3     | radius reduction, in (0, 1]                         |
+// | initial_radius     | double | 0       | gather radius in scene units; 0 = automatic:        |
+// |                    |        |         | initial_radius_pixels pixel footprints at each      |
+// |                    |        |         | pixel's first visible point                         |
+// | initial_radius_pixels | double | 2    | the automatic radius in pixel footprints, > 0       |
+// | max_depth          | int    | 16      | scattering events per camera or photon path, 1..1000|
+// | seed               | int    | 0       | random sequence; same seed, same image (any thread  |
+// |                    |        |         | count)                                              |
+// | hit_point_search   | string | grid    | "grid" (hashed grid) or "kdtree" (nanoflann)        |
+// | direct_lighting    | int    | 1       | 1: direct light by shadow rays in the eye pass;     |
+// |                    |        |         | 0: from photons too (for tests and comparisons)     |
+//
+// mode, seed, direct_lighting, initial_radius and initial_radius_pixels are fixed once the first pass has run;
+// the others may change between passes.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace ppm {
+
+struct RenderSettings {
+    enum class Mode { Sppm, Ppm };
+    enum class Search { Grid, KdTree };
+
+    Mode mode = Mode::Sppm;
+    std::uint64_t photons_per_pass = 200000;
+    double alpha = 2.0 / 3.0;
+    double initial_radius = 0;
+    double initial_radius_pixels = 2;
+    int max_depth = 16;
+    std::uint64_t seed = 0;
+    Search search = Search::Grid;
+    bool direct_lighting = true;
+
+    // Set one setting from its key; `started` is whether a pass has run. Throws ppm::Error:
+    // INVALID_ARGUMENT for an unknown key, a key of another type or a value out of range
+    // (the message lists the keys or the range), INVALID_OPERATION for a fixed setting.
+    void set_int(const std::string &key, std::int64_t value, bool started);
+    void set_double(const std::string &key, double value, bool started);
+    void set_string(const std::string &key, const std::string &value, bool started);
+
+    std::int64_t get_int(const std::string &key) const;
+    double get_double(const std::string &key) const;
+    std::string get_string(const std::string &key) const;
+};
+
+} // namespace ppm

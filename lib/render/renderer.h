@@ -1,0 +1,135 @@
+// The progressive photon mapper: one render_pass() is an eye pass (visible points and their
+// direct light), a photon pass (photons traced from the lights and gathered at the visible
+// points within their radii) and the statistics update that shrinks the radii.
+//
+// Two modes (render_settings.h):
+//  - SPPM (default; Hachisuka and Jensen 2009): every pass traces a new jittered camera path
+//    per pixel, through mirrors and glass (one branch, chosen by Fresnel), to its first
+//    non-specular vertex, and the pixel's statistics (N, R, tau) carry over;
+//  - PPM (Hachisuka, Ogaki and Jensen 2008): the first pass traces the camera paths once,
+//    splitting at glass and at coats (both branches, weighted), and every resulting hit point
+//    keeps its own statistics; later passes only re-sample direct light and trace photons.
+// Direct light (light sources seen by a visible point, and emitters seen through specular
+// chains) is estimated by ray tracing in the eye pass, so photons are not stored at their
+// first hit (PITFALLS.md).
+//
+// Determinism: each camera path and each photon draws counter-based random numbers from
+// (seed, pass, index) and photon flux is summed in fixed point, so an image depends on the
+// seed and settings only, not on the thread count or scheduling.
+//
+// Threads: render_pass() runs on the context's worker threads. image() and the other
+// readers may be called from any thread at any time, also during a pass: they see the state
+// after the last completed pass. cancel() may be called from any thread.
+#pragma once
+
+#include "core/ref_counted.h"
+#include "photon/hash_grid.h"
+#include "photon/hit_point.h"
+#include "photon/hit_point_tree.h"
+#include "photon/random.h"
+#include "photon/sppm_statistics.h"
+#include "render/camera.h"
+#include "render/render_scene.h"
+#include "render/render_settings.h"
+#include "scene/scene.h"
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+namespace ppm {
+
+// What a camera path left at one slot (a pixel in SPPM, a split path in PPM) in one pass.
+struct VisiblePoint {
+    bool valid = false;
+    Vec3 p;
+    Vec3 normal;      // geometric normal on the camera's side: photons from behind are rejected
+    double p_error = 0;
+    Frame frame;      // shading frame
+    Vec3 wo_local;
+    Bsdf bsdf = Bsdf::diffuse(Rgb(0));
+    Rgb weight;       // camera path throughput up to this point
+    double initial_r2 = 0;
+};
+
+class Renderer : public RefCounted {
+public:
+    // Keeps the scene alive. Throws ppm::Error for an uncommitted scene, bad camera settings
+    // or materials (see RenderScene, Camera).
+    Renderer(Scene &scene, const CameraSettings &camera);
+    ~Renderer() override;
+
+    Context &context() const { return scene_->context(); }
+    RenderSettings &settings() { return settings_; }
+    bool started() const { return passes_.load() > 0; }
+
+    // One pass. Throws ppm::Error: CANCELLED when cancel() was called before or during it
+    // (the pass is then discarded: the image stays as it was), INVALID_OPERATION when another
+    // pass is running or the scene was changed and not committed again.
+    void render_pass();
+    // Asks the running pass, or the next one if none runs, to stop as soon as it can.
+    void cancel() { cancel_requested_.store(true); }
+
+    int width() const { return camera_.width(); }
+    int height() const { return camera_.height(); }
+    std::uint64_t passes() const { return passes_.load(); }
+    std::uint64_t photons_emitted() const { return photons_emitted_.load(); }
+    double last_eye_seconds() const { return last_eye_seconds_; }
+    double last_photon_seconds() const { return last_photon_seconds_; }
+
+    // Per-pixel layers, row-major from the top-left pixel:
+    //   "radiance": 3 floats per pixel, linear RGB radiance (the image);
+    //   "radius":   1 float, the gather radius (largest over a pixel's slots, 0 before any);
+    //   "photons":  1 float, N, the (alpha-reduced) photon count of the pixel's statistics.
+    static size_t layer_channels(const std::string &name); // throws for an unknown name
+    void read_layer(const std::string &name, float *out) const;
+
+private:
+    void eye_pass(std::uint32_t pass);
+    void photon_pass(std::uint32_t pass);
+    void direct_pass(std::uint32_t pass); // PPM: direct light again at the fixed points
+    void build_search();
+    void commit_pass();
+    bool cancelled() const { return cancel_requested_.load(std::memory_order_relaxed); }
+
+    // Camera paths (eye_pass.cpp).
+    void trace_sppm_path(std::uint32_t pixel, std::uint32_t pass);
+    template <class Emit>
+    void trace_split_path(const ppm_ray &ray, Rgb weight, int depth, double length, int &budget,
+                          std::uint32_t pixel, Emit &&emit);
+    Rgb direct_light(const VisiblePoint &vp, CounterRng &rng) const;
+    VisiblePoint make_visible_point(const SurfacePoint &sp, const Vec3 &ray_dir, const Rgb &weight,
+                                    double path_length) const;
+    double footprint_r2(double path_length) const;
+    // Photon paths (photon_pass.cpp).
+    void trace_photon(std::uint64_t index, std::uint32_t pass);
+    void deposit(const Vec3 &position, const Vec3 &direction, const Rgb &flux);
+
+    Scene *scene_; // retained
+    RenderScene render_scene_;
+    Camera camera_;
+    RenderSettings settings_;
+
+    // Slots: one per pixel in SPPM, one per split camera path in PPM (set by the first pass).
+    std::vector<std::uint32_t> slot_pixel_;
+    std::vector<PixelStatistics> stats_;
+    // This pass: visible point and direct light per slot, and the searchable hit points.
+    std::vector<VisiblePoint> visible_;
+    std::vector<Rgb> pass_direct_;
+    std::vector<Rgb> fixed_emitted_; // PPM: emission seen along each split path (constant)
+    std::vector<HitPoint> hit_points_;
+    HitPointGrid grid_;
+    HitPointTree tree_;
+    std::unique_ptr<FluxAccumulator> flux_;
+
+    std::atomic<std::uint64_t> passes_{0};
+    std::atomic<std::uint64_t> photons_emitted_{0};
+    double last_eye_seconds_ = 0, last_photon_seconds_ = 0;
+    std::atomic<bool> cancel_requested_{false};
+    std::mutex pass_mutex_;           // one pass at a time
+    mutable std::mutex stats_mutex_;  // readers against the end-of-pass update
+};
+
+} // namespace ppm

@@ -1,0 +1,92 @@
+#include "render/texture.h"
+
+#include "core/error.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+
+namespace ppm {
+
+double srgb_to_linear(double c) {
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+namespace {
+
+bool colorspace_is(const std::string &colorspace, const char *name) {
+    return std::equal(colorspace.begin(), colorspace.end(), name, name + std::strlen(name),
+                      [](char a, char b) { return std::tolower(a) == std::tolower(b); });
+}
+
+bool is_srgb_encoded(const OIIO::ImageSpec &spec) {
+    const std::string colorspace = spec.get_string_attribute("oiio:ColorSpace");
+    if (colorspace_is(colorspace, "sRGB")) return true;
+    if (colorspace_is(colorspace, "linear") || colorspace_is(colorspace, "scene_linear") ||
+        colorspace_is(colorspace, "lin_srgb"))
+        return false;
+    const OIIO::TypeDesc::BASETYPE base = static_cast<OIIO::TypeDesc::BASETYPE>(spec.format.basetype);
+    return base != OIIO::TypeDesc::FLOAT && base != OIIO::TypeDesc::HALF &&
+           base != OIIO::TypeDesc::DOUBLE;
+}
+
+} // namespace
+
+std::shared_ptr<const Texture> Texture::load(const std::string &path) {
+    auto input = OIIO::ImageInput::open(path);
+    if (!input) fail(PPM_ERROR_IO, "texture '" + path + "': " + OIIO::geterror());
+    const OIIO::ImageSpec &spec = input->spec();
+    const long long pixels = static_cast<long long>(spec.width) * spec.height;
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+        invalid_argument("texture '" + path + "' is empty");
+    if (pixels > (1ll << 28))
+        invalid_argument("texture '" + path + "' has " + std::to_string(pixels) +
+                         " pixels, more than the limit of 2^28");
+    const int channels = std::min(spec.nchannels, 3);
+    std::vector<float> data(static_cast<size_t>(pixels) * channels);
+    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
+        fail(PPM_ERROR_IO, "texture '" + path + "': " + input->geterror());
+    const bool srgb = is_srgb_encoded(spec);
+    std::vector<float> rgb(static_cast<size_t>(pixels) * 3);
+    for (long long i = 0; i < pixels; ++i)
+        for (int c = 0; c < 3; ++c) {
+            const float value = data[i * channels + std::min(c, channels - 1)];
+            if (!std::isfinite(value) || value < 0)
+                invalid_argument("texture '" + path + "' has a NaN, infinite or negative value at pixel (" +
+                                 std::to_string(i % spec.width) + ", " + std::to_string(i / spec.width) + ")");
+            rgb[i * 3 + c] = srgb ? static_cast<float>(srgb_to_linear(std::min(value, 1.0f))) : value;
+        }
+    return std::make_shared<Texture>(spec.width, spec.height, std::move(rgb), path);
+}
+
+Texture::Texture(int width, int height, std::vector<float> rgb, std::string name)
+    : width_(width), height_(height), rgb_(std::move(rgb)), name_(std::move(name)) {
+    if (width <= 0 || height <= 0 || rgb_.size() != static_cast<size_t>(width) * height * 3)
+        invalid_argument("texture '" + name_ + "': size does not match its data");
+    for (float value : rgb_) max_value_ = std::max(max_value_, value);
+}
+
+Rgb Texture::texel(long x, long y) const {
+    x %= width_;
+    y %= height_;
+    if (x < 0) x += width_;
+    if (y < 0) y += height_;
+    const float *p = &rgb_[(static_cast<size_t>(y) * width_ + x) * 3];
+    return {p[0], p[1], p[2]};
+}
+
+Rgb Texture::lookup(double u, double v) const {
+    if (!std::isfinite(u) || !std::isfinite(v)) return texel(0, 0);
+    // Texel centres sit at half-integer positions; wrap first so huge tiling factors keep precision.
+    const double x = (u - std::floor(u)) * width_ - 0.5, y = (v - std::floor(v)) * height_ - 0.5;
+    const double fx = std::floor(x), fy = std::floor(y);
+    const long x0 = static_cast<long>(fx), y0 = static_cast<long>(fy);
+    const double ax = x - fx, ay = y - fy;
+    return texel(x0, y0) * ((1 - ax) * (1 - ay)) + texel(x0 + 1, y0) * (ax * (1 - ay)) +
+           texel(x0, y0 + 1) * ((1 - ax) * ay) + texel(x0 + 1, y0 + 1) * (ax * ay);
+}
+
+} // namespace ppm
