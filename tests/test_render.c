@@ -220,6 +220,7 @@ static void point_light_on_plane_by_photons_converges(void **state) {
     ppm_renderer r = make_renderer(f->scene, origin, target, kFov, 32, 32);
     assert_ppm_ok(ppm_renderer_set_int(r, "direct_lighting", 0));
     assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", 20000));
+    assert_ppm_ok(ppm_renderer_set_double(r, "initial_radius_pixels", 2));
     double errors[3];
     const int passes[3] = {2, 16, 128};
     int done = 0;

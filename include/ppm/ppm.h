@@ -392,6 +392,9 @@ typedef struct ppm_camera {
     uint32_t width, height; /* pixels, at most 2^28 in all */
     double aperture_radius; /* scene units, >= 0 */
     double focus_distance;  /* scene units, > 0 when aperture_radius > 0 */
+    double near_clip;       /* scene units, >= 0: rays start on the plane this far along the
+                               view axis (Mitsuba's near_clip, whose default is 0.01); 0 = at
+                               the lens */
 } ppm_camera;
 
 /* A renderer for a committed scene (kept alive by the renderer) seen through `camera`.
@@ -409,7 +412,7 @@ PPM_API void ppm_renderer_release(ppm_renderer renderer);
  *   "photons_per_pass"      int    1 .. 2^31                                  default 200000
  *   "alpha"                 double radius reduction in (0, 1]                 default 2/3
  *   "initial_radius"        double scene units; 0 = automatic                 default 0
- *   "initial_radius_pixels" double automatic radius in pixel footprints > 0   default 2
+ *   "initial_radius_pixels" double automatic radius in pixel footprints > 0   default 1
  *   "max_depth"             int    scattering events per path, 1 .. 1000      default 16
  *   "seed"                  int    random sequence                            default 0
  *   "hit_point_search"      string "grid" (hashed grid) or "kdtree"           default "grid"

@@ -58,6 +58,7 @@ ppm::CameraSettings read_camera(const ppm_camera *camera) {
     c.height = static_cast<int>(camera->height);
     c.aperture_radius = camera->aperture_radius;
     c.focus_distance = camera->focus_distance;
+    c.near_clip = camera->near_clip;
     return c;
 }
 

@@ -51,6 +51,9 @@ Camera::Camera(const CameraSettings &s) {
     aspect_ = double(s.width) / double(s.height);
     aperture_radius_ = s.aperture_radius;
     focus_distance_ = s.focus_distance;
+    if (!(s.near_clip >= 0 && std::isfinite(s.near_clip)))
+        invalid_argument("camera near_clip must be finite and >= 0, got " + format_number(s.near_clip));
+    near_clip_ = s.near_clip;
 }
 
 CameraRay Camera::generate_ray(double x, double y, double lens_u, double lens_v) const {
@@ -58,8 +61,8 @@ CameraRay Camera::generate_ray(double x, double y, double lens_u, double lens_v)
     const double px = (1.0 - 2.0 * x / width_) * tan_half_fov_;
     const double py = (1.0 - 2.0 * y / height_) * tan_half_fov_ / aspect_;
     if (aperture_radius_ <= 0) {
-        const Vec3 d = left_ * px + up_ * py + forward_;
-        return {origin_, normalize(d)};
+        const Vec3 d = normalize(left_ * px + up_ * py + forward_);
+        return {origin_, d, near_clip_ / dot(d, forward_)};
     }
     double ax, ay;
     square_to_uniform_disk_concentric(lens_u, lens_v, &ax, &ay);
@@ -68,7 +71,8 @@ CameraRay Camera::generate_ray(double x, double y, double lens_u, double lens_v)
     // Focus point (px, py, 1) * focus_distance minus the aperture point (ax, ay, 0).
     const Vec3 d = left_ * (px * focus_distance_ - ax) + up_ * (py * focus_distance_ - ay) +
                    forward_ * focus_distance_;
-    return {origin_ + left_ * ax + up_ * ay, normalize(d)};
+    const Vec3 unit = normalize(d);
+    return {origin_ + left_ * ax + up_ * ay, unit, near_clip_ / dot(unit, forward_)};
 }
 
 bool Camera::project(const Vec3 &p, double *x, double *y) const {

@@ -22,8 +22,10 @@
 // point where the pinhole ray meets the plane local z = focus_distance: the plane of focus
 // is perpendicular to the view axis (not a sphere around the lens).
 //
-// Differences from Mitsuba, on purpose: rays start at the lens (no near clip offset) and
-// there is no far clip; no crop window or principal point offset.
+// Near clip (Mitsuba's `near_clip`): rays start where they cross the plane local z =
+// near_clip (tnear = near_clip / cos of the angle to the view axis). Mitsuba's default is
+// 0.01; ours is 0, rays start at the lens. There is no far clip, crop window or principal
+// point offset.
 #pragma once
 
 #include "math/vec3.h"
@@ -38,11 +40,13 @@ struct CameraSettings {
     int width = 0, height = 0;   // pixels, both > 0
     double aperture_radius = 0;  // scene units; 0 is a pinhole
     double focus_distance = 0;   // scene units along the view axis; > 0 when aperture_radius > 0
+    double near_clip = 0;        // scene units along the view axis, >= 0
 };
 
 struct CameraRay {
     Vec3 origin;
     Vec3 direction; // unit length
+    double tnear = 0; // where the ray crosses the near clip plane
 };
 
 class Camera {
@@ -78,7 +82,7 @@ private:
     double tan_half_fov_ = 0;
     double aspect_ = 1;
     int width_ = 0, height_ = 0;
-    double aperture_radius_ = 0, focus_distance_ = 0;
+    double aperture_radius_ = 0, focus_distance_ = 0, near_clip_ = 0;
 };
 
 } // namespace ppm

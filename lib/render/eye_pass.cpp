@@ -27,7 +27,7 @@ ppm_ray camera_ray(const Camera &camera, std::uint32_t pixel, CounterRng &rng) {
     ppm_ray ray;
     cr.origin.store(ray.org);
     cr.direction.store(ray.dir);
-    ray.tnear = 0;
+    ray.tnear = cr.tnear;
     ray.tfar = INFINITY;
     return ray;
 }

@@ -1,5 +1,8 @@
 // Photon paths: emitted by lights in proportion to power, scattered with the adjoint BSDFs
-// and Russian roulette, gathered at every visible point whose radius holds them.
+// and Russian roulette. Where a photon may be gathered it is buffered; each batch of photons
+// is then sorted along a Morton curve and gathered in that order, so consecutive searches
+// touch the same hit points (gathering in path order missed the cache at nearly every
+// photon). Batches keep the buffers' size independent of photons_per_pass.
 #include "render/renderer.h"
 
 #include "scene/scene.h"
@@ -7,32 +10,63 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 
 namespace ppm {
 
 namespace {
+
 constexpr std::uint8_t kPhotonStream = 1;
+constexpr std::uint64_t kBatchPhotons = std::uint64_t(1) << 18;
+
+// Spreads the low 21 bits of v to every third bit.
+std::uint64_t spread_bits(std::uint64_t v) {
+    v &= 0x1FFFFF;
+    v = (v | v << 32) & 0x1F00000000FFFFull;
+    v = (v | v << 16) & 0x1F0000FF0000FFull;
+    v = (v | v << 8) & 0x100F00F00F00F00Full;
+    v = (v | v << 4) & 0x10C30C30C30C30C3ull;
+    v = (v | v << 2) & 0x1249249249249249ull;
+    return v;
 }
 
-void Renderer::deposit(const Vec3 &position, const Vec3 &direction, const Rgb &flux) {
+std::uint64_t morton_key(const Vec3 &p, const Box3 &box) {
+    std::uint64_t key = 0;
+    for (int a = 0; a < 3; ++a) {
+        const double extent = box.upper[a] - box.lower[a];
+        const double t = extent > 0 ? (p[a] - box.lower[a]) / extent : 0.0;
+        const auto q = static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * 2097151.0);
+        key |= spread_bits(q) << a;
+    }
+    return key;
+}
+
+bool inside(const Box3 &box, const Vec3 &p) {
+    return p.x >= box.lower.x && p.x <= box.upper.x && p.y >= box.lower.y && p.y <= box.upper.y &&
+           p.z >= box.lower.z && p.z <= box.upper.z;
+}
+
+} // namespace
+
+void Renderer::deposit(const PhotonHit &photon) {
     const auto visit = [&](std::uint32_t index, double) {
         const HitPoint &hp = hit_points_[index];
         // A photon arriving from behind the visible point's surface (the far side of a thin
         // wall, the inside of a closed object) does not light it.
-        if (dot(hp.normal, direction) >= 0) return;
+        if (dot(hp.normal, photon.direction) >= 0) return;
         const VisiblePoint &vp = visible_[hp.pixel];
-        const Rgb f = vp.bsdf.eval(vp.wo_local, vp.frame.to_local(-direction));
-        flux_->add(hp.pixel, flux * f * vp.weight);
+        const Rgb f = vp.bsdf.eval(vp.wo_local, vp.frame.to_local(-photon.direction));
+        flux_->add(hp.pixel, photon.flux * f * vp.weight);
     };
     if (settings_.search == RenderSettings::Search::Grid)
-        grid_.query(position, visit);
+        grid_.query(photon.position, visit);
     else
-        tree_.query(position, visit);
+        tree_.query(photon.position, visit);
 }
 
-void Renderer::trace_photon(std::uint64_t index, std::uint32_t pass) {
+void Renderer::trace_photon(std::uint64_t index, std::uint32_t pass, std::vector<PhotonHit> &hits) const {
     CounterRng rng(settings_.seed, kPhotonStream, pass, index);
     double light_probability = 0;
     const Light &light = render_scene_.lights()[render_scene_.pick_light(rng.uniform(), &light_probability)];
@@ -50,8 +84,8 @@ void Renderer::trace_photon(std::uint64_t index, std::uint32_t pass) {
         if (!render_scene_.intersect(ray, sp)) return;
         const Vec3 direction = Vec3::from(ray.dir);
         // Depth 0 is direct light, which the eye pass estimates by itself (unless told not to).
-        if ((depth > 0 || !settings_.direct_lighting) && sp.bsdf.has_non_specular())
-            deposit(sp.p, direction, flux);
+        if ((depth > 0 || !settings_.direct_lighting) && sp.bsdf.has_non_specular() && inside(gather_bounds_, sp.p))
+            hits.push_back({sp.p, direction, flux});
         const double u_lobe = rng.uniform(), v1 = rng.uniform(), v2 = rng.uniform();
         const BsdfSample s = sp.bsdf.sample(sp.wo_local, u_lobe, v1, v2, TransportMode::Importance);
         if (!s.valid()) return;
@@ -65,14 +99,38 @@ void Renderer::trace_photon(std::uint64_t index, std::uint32_t pass) {
     }
 }
 
+void Renderer::gather_sorted() {
+    batch_hits_.clear();
+    for (std::vector<PhotonHit> &hits : thread_hits_) {
+        batch_hits_.insert(batch_hits_.end(), hits.begin(), hits.end());
+        hits.clear();
+    }
+    batch_order_.resize(batch_hits_.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, batch_hits_.size(), 4096), [&](const auto &range) {
+        for (std::size_t i = range.begin(); i < range.end(); ++i)
+            batch_order_[i] = {morton_key(batch_hits_[i].position, gather_bounds_), static_cast<std::uint32_t>(i)};
+    });
+    tbb::parallel_sort(batch_order_.begin(), batch_order_.end());
+    // Flux is summed in fixed point, so the order of the deposits does not change the image.
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, batch_order_.size(), 1024), [&](const auto &range) {
+        if (cancelled()) return;
+        for (std::size_t i = range.begin(); i < range.end(); ++i) deposit(batch_hits_[batch_order_[i].second]);
+    });
+}
+
 void Renderer::photon_pass(std::uint32_t pass) {
     if (render_scene_.lights().empty() || render_scene_.total_power().is_black() || hit_points_.empty()) return;
     const std::uint64_t count = settings_.photons_per_pass;
     scene_->context().run([&] {
-        tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, count, 1024), [&](const auto &range) {
-            if (cancelled()) return;
-            for (std::uint64_t i = range.begin(); i < range.end(); ++i) trace_photon(i, pass);
-        });
+        for (std::uint64_t begin = 0; begin < count && !cancelled(); begin += kBatchPhotons) {
+            const std::uint64_t end = std::min(count, begin + kBatchPhotons);
+            tbb::parallel_for(tbb::blocked_range<std::uint64_t>(begin, end, 1024), [&](const auto &range) {
+                if (cancelled()) return;
+                std::vector<PhotonHit> &hits = thread_hits_.local();
+                for (std::uint64_t i = range.begin(); i < range.end(); ++i) trace_photon(i, pass, hits);
+            });
+            gather_sorted();
+        }
     });
 }
 

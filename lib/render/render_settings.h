@@ -11,7 +11,7 @@
 // | initial_radius     | double | 0       | gather radius in scene units; 0 = automatic:        |
 // |                    |        |         | initial_radius_pixels pixel footprints at each      |
 // |                    |        |         | pixel's first visible point                         |
-// | initial_radius_pixels | double | 2    | the automatic radius in pixel footprints, > 0       |
+// | initial_radius_pixels | double | 1    | the automatic radius in pixel footprints, > 0       |
 // | max_depth          | int    | 16      | scattering events per camera or photon path, 1..1000|
 // | seed               | int    | 0       | random sequence; same seed, same image (any thread  |
 // |                    |        |         | count)                                              |
@@ -36,7 +36,7 @@ struct RenderSettings {
     std::uint64_t photons_per_pass = 200000;
     double alpha = 2.0 / 3.0;
     double initial_radius = 0;
-    double initial_radius_pixels = 2;
+    double initial_radius_pixels = 1;
     int max_depth = 16;
     std::uint64_t seed = 0;
     Search search = Search::Grid;

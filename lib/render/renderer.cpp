@@ -69,12 +69,19 @@ void Renderer::render_pass() {
 
 void Renderer::build_search() {
     hit_points_.clear();
+    gather_bounds_ = Box3();
+    double max_r2 = 0;
     for (std::uint32_t slot = 0; slot < visible_.size(); ++slot) {
         const VisiblePoint &vp = visible_[slot];
         if (!vp.valid) continue;
         const double r2 = stats_[slot].r2 > 0 ? stats_[slot].r2 : vp.initial_r2;
         hit_points_.push_back({vp.p, vp.normal, r2, slot});
+        gather_bounds_.extend(vp.p);
+        max_r2 = std::max(max_r2, r2);
     }
+    const double pad = std::sqrt(max_r2) * (1 + 1e-9) + 1e-12 * gather_bounds_.diagonal();
+    gather_bounds_.lower -= Vec3{pad, pad, pad};
+    gather_bounds_.upper += Vec3{pad, pad, pad};
     if (settings_.search == RenderSettings::Search::Grid)
         grid_.build(hit_points_.data(), hit_points_.size());
     else

@@ -33,6 +33,8 @@
 #include "render/render_settings.h"
 #include "scene/scene.h"
 
+#include <tbb/enumerable_thread_specific.h>
+
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -52,6 +54,14 @@ struct VisiblePoint {
     Bsdf bsdf = Bsdf::diffuse(Rgb(0));
     Rgb weight;       // camera path throughput up to this point
     double initial_r2 = 0;
+};
+
+// A photon arriving at a surface where it may be gathered, buffered so that a batch of them
+// can be gathered in spatial order (hit points then stay in cache).
+struct PhotonHit {
+    Vec3 position;
+    Vec3 direction; // of travel, unit
+    Rgb flux;
 };
 
 class Renderer : public RefCounted {
@@ -104,8 +114,9 @@ private:
                                     double path_length) const;
     double footprint_r2(double path_length) const;
     // Photon paths (photon_pass.cpp).
-    void trace_photon(std::uint64_t index, std::uint32_t pass);
-    void deposit(const Vec3 &position, const Vec3 &direction, const Rgb &flux);
+    void trace_photon(std::uint64_t index, std::uint32_t pass, std::vector<PhotonHit> &hits) const;
+    void gather_sorted();
+    void deposit(const PhotonHit &photon);
 
     Scene *scene_; // retained
     RenderScene render_scene_;
@@ -123,6 +134,11 @@ private:
     HitPointGrid grid_;
     HitPointTree tree_;
     std::unique_ptr<FluxAccumulator> flux_;
+    Box3 gather_bounds_; // hit points' bounds grown by the largest radius: photons outside are not kept
+    // Photon batches: per-thread buffers of the photons that landed, then one sorted list.
+    tbb::enumerable_thread_specific<std::vector<PhotonHit>> thread_hits_;
+    std::vector<PhotonHit> batch_hits_;
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> batch_order_; // (Morton key, index)
 
     std::atomic<std::uint64_t> passes_{0};
     std::atomic<std::uint64_t> photons_emitted_{0};

@@ -1,5 +1,6 @@
 // ppm-bench: benchmarks of libppm. Subcommands dispatch to their own files.
 #include "intersect_command.h"
+#include "render_command.h"
 
 #include <ppm/ppm.h>
 
@@ -14,6 +15,7 @@ void print_usage(std::FILE *out) {
                  "commands:\n"
                  "  intersect   speed against accuracy of patch intersection: libppm, naive Newton,\n"
                  "              Embree and CGAL on tessellations, against a long-double reference\n"
+                 "  render      renderer speed: eye pass time, photon paths/s, memory\n"
                  "options:\n"
                  "  -h, --help  this text ('ppm-bench <command> -h' for a command's options)\n"
                  "  --version   print the libppm version\n");
@@ -36,6 +38,7 @@ int main(int argc, char **argv) {
         return 0;
     }
     if (!std::strcmp(command, "intersect")) return bench::run_intersect_command(argc, argv, 2);
+    if (!std::strcmp(command, "render")) return bench::run_render_command(argc, argv, 2);
     std::fprintf(stderr, "ppm-bench: unknown command '%s'\n", command);
     print_usage(stderr);
     return 1;
