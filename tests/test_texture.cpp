@@ -1,0 +1,103 @@
+// Image textures through OpenImageIO: an 8-bit PNG is decoded from sRGB to linear, v = 0 is
+// the top row, lookups are bilinear between texel centres and repeat outside [0, 1); bad
+// files give clear errors.
+#include "render/material.h"
+#include "render/texture.h"
+
+#include "core/error.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <unistd.h>
+
+#include "test_support.h" // last: cmocka defines macros such as fail()
+
+using namespace ppm;
+
+namespace {
+
+std::string temp_path(const char *name) {
+    return "/tmp/ppm_test_texture_" + std::to_string(getpid()) + "_" + name;
+}
+
+// 2 x 2 RGB image: top row (255, 0, 0) (0, 255, 0), bottom row (0, 0, 255) (128, 128, 128).
+std::string write_png() {
+    const std::string path = temp_path("tiny.png");
+    const unsigned char pixels[12] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 128, 128, 128};
+    auto out = OIIO::ImageOutput::create(path);
+    assert_non_null(out.get());
+    OIIO::ImageSpec spec(2, 2, 3, OIIO::TypeDesc::UINT8);
+    assert_true(out->open(path, spec));
+    assert_true(out->write_image(OIIO::TypeDesc::UINT8, pixels));
+    out->close();
+    return path;
+}
+
+void srgb_png_decodes_to_linear_with_top_row_at_v0(void **) {
+    const std::string path = write_png();
+    const auto texture = Texture::load(path);
+    assert_int_equal(texture->width(), 2);
+    // Texel centres are at u, v = 0.25 and 0.75.
+    const Rgb top_left = texture->lookup(0.25, 0.25), bottom_right = texture->lookup(0.75, 0.75);
+    assert_close(top_left.r, 1.0, 1e-6);
+    assert_close(top_left.g, 0.0, 1e-6);
+    assert_close(bottom_right.r, srgb_to_linear(128 / 255.0), 1e-6); // 0.2158, not 0.502
+    assert_close(srgb_to_linear(128 / 255.0), 0.21586, 1e-4);
+    const Rgb bottom_left = texture->lookup(0.25, 0.75);
+    assert_close(bottom_left.b, 1.0, 1e-6);
+    // Halfway between the top texels: the mean of red and green; repeat wraps u + 3.
+    const Rgb mid = texture->lookup(0.5, 0.25);
+    assert_close(mid.r, 0.5, 1e-6);
+    assert_close(mid.g, 0.5, 1e-6);
+    const Rgb wrapped = texture->lookup(3.25, -0.75);
+    assert_close(wrapped.r, top_left.r, 1e-9);
+    // At u = 0 the left and right columns blend (the texture repeats).
+    assert_close(texture->lookup(0.0, 0.25).r, 0.5, 1e-6);
+    std::remove(path.c_str());
+}
+
+void material_applies_mapping_and_keeps_energy(void **) {
+    const auto texture = std::make_shared<Texture>(1, 1, std::vector<float>{2.0f, 0.5f, 0.25f}, "bright");
+    Material m{Bsdf::diffuse(Rgb(0.1)), texture, {4, 4, 0.1, 0.2}};
+    const Bsdf b = m.at(0.3, 0.7);
+    assert_close(b.reflectance().r, 1.0, 0); // clamped: a reflectance above 1 would create energy
+    assert_close(b.reflectance().g, 0.5, 1e-7);
+    assert_close(b.reflectance().b, 0.25, 1e-7);
+}
+
+void bad_files_are_clear_errors(void **) {
+    try {
+        Texture::load("/no/such/dir/texture.png");
+        fail_msg("missing file loaded");
+    } catch (const Error &e) {
+        assert_int_equal(e.status(), PPM_ERROR_IO);
+        assert_non_null(std::strstr(e.what(), "/no/such/dir/texture.png"));
+    }
+    const std::string path = temp_path("garbage.png");
+    std::FILE *f = std::fopen(path.c_str(), "wb");
+    std::fputs("\x89PNG\r\n\x1a\nthis is not a png", f);
+    std::fclose(f);
+    try {
+        Texture::load(path);
+        fail_msg("garbage loaded");
+    } catch (const Error &e) {
+        assert_int_equal(e.status(), PPM_ERROR_IO);
+        assert_non_null(std::strstr(e.what(), "garbage.png"));
+    }
+    std::remove(path.c_str());
+}
+
+} // namespace
+
+int main() {
+    const CMUnitTest tests[] = {
+        cmocka_unit_test(srgb_png_decodes_to_linear_with_top_row_at_v0),
+        cmocka_unit_test(material_applies_mapping_and_keeps_energy),
+        cmocka_unit_test(bad_files_are_clear_errors),
+    };
+    return cmocka_run_group_tests(tests, nullptr, nullptr);
+}
