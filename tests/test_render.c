@@ -193,14 +193,18 @@ static double plane_error(const image *im, double intensity) {
     return sqrt(sum / (3.0 * im->width * im->height));
 }
 
-static void point_light_on_plane_by_shadow_rays(void **state) {
-    scene_fixture *f = *state;
+/* The plane under a point light of 2 W/sr at height kHeight, seen from above at 32 x 32. */
+static ppm_renderer point_light_over_plane(scene_fixture *f) {
     build_plane(f->scene);
     const double position[3] = {0, 0, kHeight}, intensity[3] = {2, 2, 2};
     assert_ppm_ok(ppm_scene_add_point_light(f->scene, position, intensity, NULL));
     assert_ppm_ok(ppm_scene_commit(f->scene));
     const double origin[3] = {0, 0, kCameraHeight}, target[3] = {0, 0, 0};
-    ppm_renderer r = make_renderer(f->scene, origin, target, kFov, 32, 32);
+    return make_renderer(f->scene, origin, target, kFov, 32, 32);
+}
+
+static void point_light_on_plane_by_shadow_rays(void **state) {
+    ppm_renderer r = point_light_over_plane(*state);
     assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", 1000));
     image im = render(r, 64);
     const double error = plane_error(&im, 2.0);
@@ -211,13 +215,7 @@ static void point_light_on_plane_by_shadow_rays(void **state) {
 }
 
 static void point_light_on_plane_by_photons_converges(void **state) {
-    scene_fixture *f = *state;
-    build_plane(f->scene);
-    const double position[3] = {0, 0, kHeight}, intensity[3] = {2, 2, 2};
-    assert_ppm_ok(ppm_scene_add_point_light(f->scene, position, intensity, NULL));
-    assert_ppm_ok(ppm_scene_commit(f->scene));
-    const double origin[3] = {0, 0, kCameraHeight}, target[3] = {0, 0, 0};
-    ppm_renderer r = make_renderer(f->scene, origin, target, kFov, 32, 32);
+    ppm_renderer r = point_light_over_plane(*state);
     assert_ppm_ok(ppm_renderer_set_int(r, "direct_lighting", 0));
     assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", 20000));
     assert_ppm_ok(ppm_renderer_set_double(r, "initial_radius_pixels", 2));
@@ -416,6 +414,21 @@ static void scene_errors(void **state) {
                      PPM_ERROR_INVALID_ARGUMENT, "beam_width");
     uint32_t patches = 0;
     assert_ppm_ok(ppm_scene_load_bpt(f->scene, PPM_TEAPOT, &patches));
+    double rects[32 * 4];
+    for (int i = 0; i < 32 * 4; ++i) rects[i] = (i % 4) / 4.0;
+    assert_ppm_ok(ppm_scene_set_patch_uv_rects(f->scene, patches, rects));
+    rects[17] = NAN;
+    assert_ppm_error(ppm_scene_set_patch_uv_rects(f->scene, patches, rects), PPM_ERROR_INVALID_ARGUMENT,
+                     "patch 4");
+    assert_ppm_error(ppm_scene_set_patch_uv_rects(f->scene, patches, NULL), PPM_ERROR_INVALID_ARGUMENT, "rects");
+    const double q_origin[3] = {0, 0, 0}, q_u[3] = {1, 0, 0}, q_v[3] = {0, 1, 0};
+    uint32_t quad = 0;
+    assert_ppm_ok(ppm_scene_add_quad(f->scene, q_origin, q_u, q_v, &quad));
+    assert_ppm_error(ppm_scene_set_patch_uv_rects(f->scene, quad, rects), PPM_ERROR_INVALID_ARGUMENT,
+                     "not a patch set");
+    assert_ppm_error(ppm_scene_set_geometry_emission(f->scene, quad, nan_rgb), PPM_ERROR_INVALID_ARGUMENT, "radiance");
+    assert_ppm_error(ppm_scene_set_geometry_emission(f->scene, 99, grey), PPM_ERROR_INVALID_ARGUMENT, "99");
+    assert_ppm_ok(ppm_scene_set_geometry_material(f->scene, quad, diffuse));
     assert_ppm_error(ppm_scene_set_geometry_emission(f->scene, patches, grey), PPM_ERROR_INVALID_ARGUMENT,
                      "only quads and spheres");
     assert_ppm_ok(ppm_scene_set_geometry_material(f->scene, patches, 5));
