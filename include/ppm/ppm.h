@@ -451,6 +451,50 @@ PPM_API ppm_status ppm_renderer_cancel(ppm_renderer renderer);
 PPM_API ppm_status ppm_renderer_get_layer(ppm_renderer renderer, const char *layer, float *out,
                                           size_t count);
 
+/* Checkpoints: the renderer's whole progressive state (pass count, photons emitted, every
+ * pixel's statistics) in a versioned binary file, so that a long render can stop and go on
+ * later. A render resumed from a checkpoint and run to n passes gives the same image, bit for
+ * bit, as an uninterrupted render of n passes with the same scene, camera, settings and seed.
+ *
+ * save writes the state after the last completed pass atomically (a temporary file beside
+ * `path`, then rename), so `path` holds either the old or the new checkpoint, never a torn
+ * one; it may run during a pass. load replaces the state of a renderer that has not run a
+ * pass yet; the checkpoint must come from the same scene, camera and fixed settings (mode,
+ * seed, direct_lighting, initial radius), which it records.
+ * Errors: IO (cannot write or read `path`), PARSE (not a libppm checkpoint, another version,
+ * truncated or corrupt: the message says which), INVALID_ARGUMENT (a checkpoint of another
+ * scene, camera or settings: the message names what differs), INVALID_OPERATION (load after
+ * a pass has run). */
+PPM_API ppm_status ppm_renderer_save_checkpoint(ppm_renderer renderer, const char *path);
+PPM_API ppm_status ppm_renderer_load_checkpoint(ppm_renderer renderer, const char *path);
+
+/* ---------------------------------------------------------------------------------------- */
+/* Scene files (JSON; the format is docs/scene-format.md)                                    */
+/* ---------------------------------------------------------------------------------------- */
+
+typedef struct ppm_scene_file_t *ppm_scene_file;
+
+/* Reads a JSON scene file: builds and commits its scene (shapes, materials, textures,
+ * lights), and keeps its camera and render settings. Relative paths inside the file are
+ * relative to the file's folder. Errors name the file, line, column and key
+ * ("scene.json:14:9: bsdfs.glass.int_ior: expected a number > 0"): PARSE for JSON syntax,
+ * wrong types, unknown keys and bad values; IO for a missing scene file or a missing file it
+ * refers to (textures, OBJ, .bpt). */
+PPM_API ppm_status ppm_scene_file_load(ppm_context context, const char *path, ppm_scene_file *out_file);
+PPM_API ppm_status ppm_scene_file_retain(ppm_scene_file file);
+PPM_API void ppm_scene_file_release(ppm_scene_file file);
+
+/* The file's committed scene, retained for the caller (release it when done). */
+PPM_API ppm_status ppm_scene_file_get_scene(ppm_scene_file file, ppm_scene *out_scene);
+/* The file's camera (`sensor`) with its film size. */
+PPM_API ppm_status ppm_scene_file_get_camera(ppm_scene_file file, ppm_camera *out_camera);
+/* A renderer for the file's scene and camera with the file's `integrator` settings applied. */
+PPM_API ppm_status ppm_scene_file_create_renderer(ppm_scene_file file, ppm_renderer *out_renderer);
+/* Read-only values of the file: "passes" (int, integrator.passes, 0 when not given) and
+ * "time" (double, integrator.time in seconds, 0 when not given). */
+PPM_API ppm_status ppm_scene_file_get_int(ppm_scene_file file, const char *key, int64_t *out_value);
+PPM_API ppm_status ppm_scene_file_get_double(ppm_scene_file file, const char *key, double *out_value);
+
 #ifdef __cplusplus
 }
 #endif
