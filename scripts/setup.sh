@@ -6,7 +6,7 @@
 # 1. installs the Debian packages that are missing (none on a prepared machine: then no
 #    apt-get runs at all and no root is needed),
 # 2. configures and builds the Release library, tests and tools in build/,
-# 3. runs the demo.
+# 3. renders the example scene examples/scenes/teapot-cornell.json into teapot-cornell.png.
 # Safe to run again: every step only does what is not done yet.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
@@ -41,9 +41,7 @@ ppm_configure examples "$PPM_BUILD_DIR/examples" -DCMAKE_BUILD_TYPE=Release \
   -Dppm_DIR="$(ppm_abspath "$PPM_BUILD_DIR")"
 cmake --build "$PPM_BUILD_DIR/examples" --parallel "$PPM_JOBS"
 
-ppm_step "Demo"
-# ---- DEMO: the one line to change when the renderer exists -------------------------------
-"$PPM_BUILD_DIR/examples/teapot_rays" tests/data/teapot.bpt
-# -------------------------------------------------------------------------------------------
+ppm_step "Demo: the teapot in a Cornell box -> teapot-cornell.png"
+"$PPM_BUILD_DIR/tools/render/ppm-render" examples/scenes/teapot-cornell.json -o teapot-cornell.png -o teapot-cornell.exr
 
-ppm_step "Done in ${SECONDS}s. Next: bash scripts/test.sh"
+ppm_step "Done in ${SECONDS}s. The image is teapot-cornell.png (linear radiance: teapot-cornell.exr). Next: bash scripts/test.sh"

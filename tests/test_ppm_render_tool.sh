@@ -42,15 +42,15 @@ same_image() {
   fi
 }
 
-# --- the command line ----------------------------------------------------------------------
+# --- the command line: usage errors exit 1 ----------------------------------------------------------------------
 expect 0 "usage: ppm-render" -- -h
 expect 0 "libppm" -- --version
-expect 2 "no scene file given" --
-expect 2 "unknown option '--frobnicate'" -- "$scene" --frobnicate
-expect 2 "--passes needs a whole number" -- "$scene" --passes -3
-expect 2 "--passes needs a whole number" -- "$scene" --passes many
-expect 2 "--set needs KEY=VALUE" -- "$scene" --set alpha
-expect 2 "unknown layer 'depth'" -- "$scene" --layers depth
+expect 1 "no scene file given" --
+expect 1 "unknown option '--frobnicate'" -- "$scene" --frobnicate
+expect 1 "--passes needs a whole number" -- "$scene" --passes -3
+expect 1 "--passes needs a whole number" -- "$scene" --passes many
+expect 1 "--set needs KEY=VALUE" -- "$scene" --set alpha
+expect 1 "unknown layer 'depth'" -- "$scene" --layers depth
 expect 2 "--set warp=9: unknown" -- "$scene" --set warp=9 -q
 expect 2 "--set alpha=7: alpha must be in (0, 1]" -- "$scene" --set alpha=7 -q
 
@@ -72,8 +72,8 @@ for f in box.png box.exr box.jpg; do
 done
 if ls -a | grep -q '\.tmp-'; then fail "temporary files left: $(ls -a)"; fi
 if iinfo -v box.exr | grep -q 'radius'; then echo "ok: EXR has the radius layer"; else fail "no radius layer in box.exr: $(iinfo -v box.exr)"; fi
-expect 2 "no file extension" -- "$scene" -o noextension -q
-expect 2 "cannot write" -- "$scene" -o image.xyz -q
+expect 1 "no file extension" -- "$scene" -o noextension -q
+expect 1 "cannot write" -- "$scene" -o image.xyz -q
 
 # --- same seed, same image; interrupted and resumed = uninterrupted --------------------------
 "$render" "$scene" --passes 6 -o whole.exr -q || fail "uninterrupted render failed"

@@ -151,6 +151,20 @@ static void test_defaults_and_inline_patches(void **state) {
     ppm_hit hit;
     assert_int_equal(ppm_scene_intersect(scene, &ray, 1, &hit), PPM_OK);
     assert_close(hit.t, 5, 1e-9);
+
+    /* No light at all: passes run and the image is black. */
+    ppm_renderer renderer = NULL;
+    assert_int_equal(ppm_scene_file_create_renderer(file, &renderer), PPM_OK);
+    assert_int_equal(ppm_renderer_set_int(renderer, "photons_per_pass", 100), PPM_OK);
+    assert_int_equal(ppm_render_pass(renderer), PPM_OK);
+    const size_t count = 768 * 576 * 3;
+    float *rgb = malloc(count * sizeof *rgb);
+    assert_non_null(rgb);
+    assert_int_equal(ppm_renderer_get_layer(renderer, "radiance", rgb, count), PPM_OK);
+    for (size_t i = 0; i < count; ++i)
+        if (rgb[i] != 0) fail_msg("pixel value %g at %zu without any light", rgb[i], i);
+    free(rgb);
+    ppm_renderer_release(renderer);
     ppm_scene_release(scene);
     ppm_scene_file_release(file);
 }

@@ -185,6 +185,16 @@ PPM_API ppm_status ppm_scene_set_geometry_material(ppm_scene scene, uint32_t geo
 PPM_API ppm_status ppm_scene_get_primitive_count(ppm_scene scene, uint32_t geom_id,
                                                  size_t *out_count);
 
+/* Number of geometries; their ids are 0 .. count - 1. */
+PPM_API ppm_status ppm_scene_get_geometry_count(ppm_scene scene, size_t *out_count);
+
+/* World-space control points of a patch geometry (its transform applied) in the layout of
+ * ppm_scene_add_bezier_patches: 48 doubles per patch into `out`, which holds `capacity`
+ * doubles. Errors: INVALID_ARGUMENT (not a patch geometry, capacity below 48 * patch
+ * count), INVALID_OPERATION (scene not committed). */
+PPM_API ppm_status ppm_scene_get_bezier_patches(ppm_scene scene, uint32_t geom_id, double *out,
+                                                size_t capacity);
+
 /* Builds the acceleration structure. Required after any change and before queries.
  * Errors: INVALID_OPERATION (empty scene). */
 PPM_API ppm_status ppm_scene_commit(ppm_scene scene);

@@ -292,6 +292,28 @@ ppm_status ppm_scene_get_primitive_count(ppm_scene scene, uint32_t geom_id, size
     });
 }
 
+ppm_status ppm_scene_get_geometry_count(ppm_scene scene, size_t *out_count) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        require(out_count, "out_count");
+        *out_count = s.geometry_count();
+    });
+}
+
+ppm_status ppm_scene_get_bezier_patches(ppm_scene scene, uint32_t geom_id, double *out, size_t capacity) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        const auto *patches = dynamic_cast<const ppm::PatchGeometry *>(&s.geometry(geom_id));
+        if (!patches) invalid_argument("geometry " + std::to_string(geom_id) + " is not a patch set");
+        if (!s.committed()) ppm::fail(PPM_ERROR_INVALID_OPERATION, "the scene is not committed");
+        require(out, "out");
+        const std::vector<ppm::BezierPatch> &world = patches->world_patches();
+        if (capacity < world.size() * 48)
+            invalid_argument("out holds " + std::to_string(capacity) + " doubles; " + std::to_string(world.size()) +
+                             " patches need " + std::to_string(world.size() * 48));
+        for (const ppm::BezierPatch &patch : world)
+            for (const ppm::Vec3 &p : patch.p) *out++ = p.x, *out++ = p.y, *out++ = p.z;
+    });
+}
+
 ppm_status ppm_scene_commit(ppm_scene scene) {
     return scene_call(scene, [](ppm::Scene &s) { s.commit(); });
 }

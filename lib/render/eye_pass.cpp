@@ -163,7 +163,10 @@ void Renderer::trace_split_path(const ppm_ray &start, Rgb weight, int depth, dou
 
 void Renderer::eye_pass(std::uint32_t pass) {
     const std::uint32_t pixels = static_cast<std::uint32_t>(camera_.width()) * camera_.height();
-    const double flux_scale = std::max(render_scene_.total_power().max(), 1e-300);
+    // Without any light (or only black ones) no photon is traced and the image is black; the
+    // accumulator still needs a valid scale.
+    const double power = render_scene_.total_power().max();
+    const double flux_scale = power > 0 ? power : 1.0;
     if (settings_.mode == RenderSettings::Mode::Sppm) {
         if (slot_pixel_.empty()) {
             slot_pixel_.resize(pixels);

@@ -25,15 +25,14 @@ double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// A failed libppm call: exit status 2 for bad input (the scene, a setting, a checkpoint),
-// 1 for failures at run time.
+// A failed libppm call (a bad scene, setting or checkpoint, or a failure at run time): exit
+// status 2, as for every runtime error (STYLE.md: 1 is for usage errors).
 struct ApiError {
-    int exit_status;
     std::string message;
 };
 
-void check(ppm_status status, int exit_status, const std::string &what = "") {
-    if (status != PPM_OK) throw ApiError{exit_status, (what.empty() ? "" : what + ": ") + ppm_last_error_message()};
+void check(ppm_status status, const std::string &what = "") {
+    if (status != PPM_OK) throw ApiError{(what.empty() ? "" : what + ": ") + ppm_last_error_message()};
 }
 
 // --set KEY=VALUE: numbers through set_double (which takes integer keys with whole values),
@@ -43,24 +42,24 @@ void apply_setting(ppm_renderer renderer, const std::string &key, const std::str
     const double number = std::strtod(value.c_str(), &end);
     const bool numeric = end != value.c_str() && *end == '\0';
     if (numeric)
-        check(ppm_renderer_set_double(renderer, key.c_str(), number), 2, "--set " + key + "=" + value);
+        check(ppm_renderer_set_double(renderer, key.c_str(), number), "--set " + key + "=" + value);
     else
-        check(ppm_renderer_set_string(renderer, key.c_str(), value.c_str()), 2, "--set " + key + "=" + value);
+        check(ppm_renderer_set_string(renderer, key.c_str(), value.c_str()), "--set " + key + "=" + value);
 }
 
 Image read_image(ppm_renderer renderer, const Options &options) {
     int64_t width = 0, height = 0;
-    check(ppm_renderer_get_int(renderer, "width", &width), 1);
-    check(ppm_renderer_get_int(renderer, "height", &height), 1);
+    check(ppm_renderer_get_int(renderer, "width", &width));
+    check(ppm_renderer_get_int(renderer, "height", &height));
     Image image;
     image.width = static_cast<int>(width);
     image.height = static_cast<int>(height);
     const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     image.radiance.resize(pixels * 3);
-    check(ppm_renderer_get_layer(renderer, "radiance", image.radiance.data(), image.radiance.size()), 1);
+    check(ppm_renderer_get_layer(renderer, "radiance", image.radiance.data(), image.radiance.size()));
     for (const std::string &name : options.layers) {
         Layer layer{name, std::vector<float>(pixels)};
-        check(ppm_renderer_get_layer(renderer, name.c_str(), layer.data.data(), layer.data.size()), 1);
+        check(ppm_renderer_get_layer(renderer, name.c_str(), layer.data.data(), layer.data.size()));
         image.layers.push_back(std::move(layer));
     }
     return image;
@@ -125,34 +124,34 @@ int render(const Options &options, SignalWatcher &signals) {
         }
     } release{context, file, renderer};
 
-    check(ppm_context_create(&context), 1, "creating the context");
-    if (options.threads > 0) check(ppm_context_set_int(context, "threads", options.threads), 2, "--threads");
-    check(ppm_scene_file_load(context, options.scene.c_str(), &file), 2);
-    check(ppm_scene_file_create_renderer(file, &renderer), 2, options.scene);
-    if (options.photons > 0) check(ppm_renderer_set_int(renderer, "photons_per_pass", options.photons), 2, "--photons");
-    if (options.seed >= 0) check(ppm_renderer_set_int(renderer, "seed", options.seed), 2, "--seed");
+    check(ppm_context_create(&context), "creating the context");
+    if (options.threads > 0) check(ppm_context_set_int(context, "threads", options.threads), "--threads");
+    check(ppm_scene_file_load(context, options.scene.c_str(), &file));
+    check(ppm_scene_file_create_renderer(file, &renderer), options.scene);
+    if (options.photons > 0) check(ppm_renderer_set_int(renderer, "photons_per_pass", options.photons), "--photons");
+    if (options.seed >= 0) check(ppm_renderer_set_int(renderer, "seed", options.seed), "--seed");
     for (const auto &[key, value] : options.settings) apply_setting(renderer, key, value);
 
     int64_t file_passes = 0;
     double file_time = 0;
-    check(ppm_scene_file_get_int(file, "passes", &file_passes), 1);
-    check(ppm_scene_file_get_double(file, "time", &file_time), 1);
+    check(ppm_scene_file_get_int(file, "passes", &file_passes));
+    check(ppm_scene_file_get_double(file, "time", &file_time));
     const double budget = options.time >= 0 ? options.time : file_time;
     const uint64_t target = options.passes > 0 ? static_cast<uint64_t>(options.passes)
                             : file_passes > 0   ? static_cast<uint64_t>(file_passes)
                             : budget > 0        ? 0 // until the time is up
                                                 : 16;
 
-    if (!options.resume.empty()) check(ppm_renderer_load_checkpoint(renderer, options.resume.c_str()), 2, "--resume");
+    if (!options.resume.empty()) check(ppm_renderer_load_checkpoint(renderer, options.resume.c_str()), "--resume");
     int64_t passes = 0, width = 0, height = 0, photons_per_pass = 0, threads = 0;
-    check(ppm_renderer_get_int(renderer, "passes", &passes), 1);
-    check(ppm_renderer_get_int(renderer, "width", &width), 1);
-    check(ppm_renderer_get_int(renderer, "height", &height), 1);
-    check(ppm_renderer_get_int(renderer, "photons_per_pass", &photons_per_pass), 1);
-    check(ppm_context_get_int(context, "threads", &threads), 1);
+    check(ppm_renderer_get_int(renderer, "passes", &passes));
+    check(ppm_renderer_get_int(renderer, "width", &width));
+    check(ppm_renderer_get_int(renderer, "height", &height));
+    check(ppm_renderer_get_int(renderer, "photons_per_pass", &photons_per_pass));
+    check(ppm_context_get_int(context, "threads", &threads));
     if (threads == 0) threads = std::thread::hardware_concurrency(); // 0: all of them
     char mode[16] = "";
-    check(ppm_renderer_get_string(renderer, "mode", mode, sizeof mode, nullptr), 1);
+    check(ppm_renderer_get_string(renderer, "mode", mode, sizeof mode, nullptr));
     if (!options.quiet) {
         std::fprintf(stderr, "ppm-render: %s: %lld x %lld, %s, %lld photons/pass, ", options.scene.c_str(),
                      static_cast<long long>(width), static_cast<long long>(height), mode,
@@ -185,13 +184,13 @@ int render(const Options &options, SignalWatcher &signals) {
             progress.finish();
             const std::string message = ppm_last_error_message();
             write_images(renderer, options);
-            throw ApiError{1, "pass " + std::to_string(passes + 1) + ": " + message};
+            throw ApiError{"pass " + std::to_string(passes + 1) + ": " + message};
         }
         last_pass_seconds = seconds_since(pass_start);
         ++passes;
 
         double photon_seconds = 0;
-        check(ppm_renderer_get_double(renderer, "last_photon_pass_seconds", &photon_seconds), 1);
+        check(ppm_renderer_get_double(renderer, "last_photon_pass_seconds", &photon_seconds));
         const double elapsed = seconds_since(start);
         const double per_pass = elapsed / static_cast<double>(passes - first_pass);
         double eta = target > 0 ? per_pass * static_cast<double>(target - static_cast<uint64_t>(passes)) : -1;
@@ -204,7 +203,7 @@ int render(const Options &options, SignalWatcher &signals) {
             last_write = Clock::now();
         }
         if (options.checkpoint_interval > 0 && seconds_since(last_checkpoint) >= options.checkpoint_interval) {
-            check(ppm_renderer_save_checkpoint(renderer, options.checkpoint.c_str()), 1, "checkpoint");
+            check(ppm_renderer_save_checkpoint(renderer, options.checkpoint.c_str()), "checkpoint");
             last_checkpoint = Clock::now();
         }
     }
@@ -215,10 +214,10 @@ int render(const Options &options, SignalWatcher &signals) {
     const bool interrupted = signals.interrupted();
     const bool timed_out = stopped_early && !interrupted && deadline.expired();
     if (interrupted || options.checkpoint_given)
-        check(ppm_renderer_save_checkpoint(renderer, options.checkpoint.c_str()), 1, "checkpoint");
+        check(ppm_renderer_save_checkpoint(renderer, options.checkpoint.c_str()), "checkpoint");
     if (!options.quiet) {
         int64_t emitted = 0;
-        check(ppm_renderer_get_int(renderer, "photons_emitted", &emitted), 1);
+        check(ppm_renderer_get_int(renderer, "photons_emitted", &emitted));
         const int64_t done = passes - first_pass;
         std::fprintf(stderr, "ppm-render: %lld passes (%.1f M photons emitted in all) in %.1f s, %.3f s per pass -> %s\n",
                      static_cast<long long>(passes), static_cast<double>(emitted) / 1e6, elapsed,
@@ -244,7 +243,7 @@ int main(int argc, char **argv) {
         options = parse_options(argc, argv);
     } catch (const UsageError &e) {
         std::fprintf(stderr, "ppm-render: %s\nTry 'ppm-render -h' for help.\n", e.what());
-        return 2;
+        return 1;
     }
     if (options.help) {
         std::fputs(usage_text, stdout);
@@ -259,7 +258,7 @@ int main(int argc, char **argv) {
             check_image_format(path);
         } catch (const std::exception &e) {
             std::fprintf(stderr, "ppm-render: %s\n", e.what());
-            return 2;
+            return 1;
         }
     }
     SignalWatcher signals; // before libppm creates threads: they inherit the blocked signals
@@ -267,9 +266,9 @@ int main(int argc, char **argv) {
         return render(options, signals);
     } catch (const ApiError &e) {
         std::fprintf(stderr, "ppm-render: %s\n", e.message.c_str());
-        return e.exit_status;
+        return 2;
     } catch (const std::exception &e) {
         std::fprintf(stderr, "ppm-render: %s\n", e.what());
-        return 1;
+        return 2;
     }
 }

@@ -46,8 +46,8 @@ const char *const usage_text =
     "SIGINT or SIGTERM (Ctrl-C) abandons the running pass, writes the images and a checkpoint\n"
     "and exits 0; a second one exits at once. The progress bar (pass, photons/s, ETA) goes to\n"
     "stderr when it is a terminal.\n"
-    "Exit status: 0 done (also when interrupted), 1 runtime error, 2 bad command line or\n"
-    "scene file.\n";
+    "Exit status: 0 done (also when interrupted), 1 usage error (options), 2 runtime error\n"
+    "(a bad or missing scene file, setting or checkpoint, an unwritable image).\n";
 
 namespace {
 

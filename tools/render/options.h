@@ -9,7 +9,7 @@
 
 namespace ppm_render {
 
-// A command line that cannot be run: exit status 2 with the message and a hint to -h.
+// A command line that cannot be run: exit status 1 with the message and a hint to -h.
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };

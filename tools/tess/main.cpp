@@ -1,4 +1,4 @@
-// ppm-tess: tessellates the Bezier patches of a .bpt file into an OBJ (or PLY) triangle mesh
+// ppm-tess: tessellates the Bezier patches of a .bpt or scene file into an OBJ (or PLY) triangle mesh
 // through libppm's public API, and reports how far the mesh lies from the surface.
 #include <ppm/ppm.h>
 
@@ -21,9 +21,11 @@
 namespace {
 
 const char *const usage_text =
-    "usage: ppm-tess INPUT.bpt -o OUTPUT.obj [options]\n"
+    "usage: ppm-tess INPUT -o OUTPUT.obj [options]\n"
     "Tessellates bicubic Bezier patches into triangles whose distance from the surface is\n"
-    "measured and held within a tolerance, or into a uniform grid.\n"
+    "measured and held within a tolerance, or into a uniform grid. INPUT is a .bpt file or\n"
+    "a scene file (.json, docs/scene-format.md): then every Bezier shape, placed by its\n"
+    "to_world, goes into one mesh.\n"
     "options:\n"
     "  -o, --output PATH   output file: OBJ (v, vt, vn, f v/vt/vn; seam vertices welded),\n"
     "                      or PLY when PATH ends in .ply or with --ply\n"
@@ -104,62 +106,50 @@ Options parse_arguments(int argc, char **argv) {
     return o;
 }
 
-// .bpt: a patch count, then per patch "3 3" and 16 lines "x y z"; '#' starts a comment.
-// Errors name the file and line.
-class BptReader {
-public:
-    explicit BptReader(const std::string &path) : path_(path), in_(path) {
-        if (!in_) throw std::runtime_error(path + ": cannot open: " + std::strerror(errno));
-    }
+void check(ppm_status status, const std::string &what) {
+    if (status != PPM_OK)
+        throw std::runtime_error(what + ": " + ppm_status_string(status) + ": " + ppm_last_error_message());
+}
 
-    std::vector<double> read() {
-        const double count = number("the patch count");
-        if (count < 1 || count > 1e7 || count != std::floor(count))
-            fail("the patch count must be an integer in 1..10000000");
-        std::vector<double> points;
-        points.reserve(static_cast<size_t>(count) * 48);
-        for (size_t p = 0; p < static_cast<size_t>(count); ++p) {
-            const double du = number("a degree line"), dv = number("a degree line");
-            if (du != 3 || dv != 3) fail("patch " + std::to_string(p) + " is not bicubic (degree line must be '3 3')");
-            for (int k = 0; k < 48; ++k) points.push_back(number("a control point coordinate"));
+// The patches of a .bpt file, or the world-space patches of every Bezier shape of a scene file
+// (.json), read by libppm (whose errors name the file, line and key).
+std::vector<double> read_patches(const std::string &path) {
+    ppm_context context = nullptr;
+    ppm_scene scene = nullptr;
+    ppm_scene_file file = nullptr;
+    struct Release {
+        ppm_context &c;
+        ppm_scene &s;
+        ppm_scene_file &f;
+        ~Release() {
+            ppm_scene_file_release(f);
+            ppm_scene_release(s);
+            ppm_context_release(c);
         }
-        std::string extra;
-        if (next_token(extra)) fail("unexpected '" + extra + "' after the last patch");
-        return points;
+    } release{context, scene, file};
+    check(ppm_context_create(&context), "creating a context");
+    if (ends_with(path, ".json")) {
+        check(ppm_scene_file_load(context, path.c_str(), &file), "reading the scene");
+        check(ppm_scene_file_get_scene(file, &scene), path);
+    } else {
+        check(ppm_scene_create(context, &scene), "creating a scene");
+        check(ppm_scene_load_bpt(scene, path.c_str(), nullptr), "reading the patches");
+        check(ppm_scene_commit(scene), path);
     }
-
-private:
-    [[noreturn]] void fail(const std::string &what) const {
-        throw std::runtime_error(path_ + ":" + std::to_string(line_) + ": " + what);
+    size_t geometries = 0;
+    check(ppm_scene_get_geometry_count(scene, &geometries), path);
+    std::vector<double> points;
+    for (uint32_t g = 0; g < geometries; ++g) {
+        size_t count = 0;
+        check(ppm_scene_get_primitive_count(scene, g, &count), path);
+        std::vector<double> patch_points(count * 48);
+        // Other shapes (spheres, quads, meshes) are not patch sets: skipped.
+        if (ppm_scene_get_bezier_patches(scene, g, patch_points.data(), patch_points.size()) == PPM_OK)
+            points.insert(points.end(), patch_points.begin(), patch_points.end());
     }
-
-    bool next_token(std::string &token) {
-        while (!(words_ >> token) || token[0] == '#') {
-            std::string line;
-            if (!std::getline(in_, line)) return false;
-            ++line_;
-            line = line.substr(0, line.find('#'));
-            words_.clear();
-            words_.str(line);
-        }
-        return true;
-    }
-
-    double number(const char *what) {
-        std::string token;
-        if (!next_token(token)) fail(std::string("the file ends where ") + what + " should be");
-        char *end = nullptr;
-        const double value = std::strtod(token.c_str(), &end);
-        if (end == token.c_str() || *end != '\0') fail("'" + token + "' is not a number (" + what + ")");
-        if (!std::isfinite(value)) fail("'" + token + "' is not finite");
-        return value;
-    }
-
-    std::string path_;
-    std::ifstream in_;
-    std::istringstream words_;
-    int line_ = 0;
-};
+    if (points.empty()) throw std::runtime_error(path + ": the scene has no Bezier patches");
+    return points;
+}
 
 double diagonal(const std::vector<double> &points) {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -263,14 +253,9 @@ template <class Write> void write_atomically(const std::string &path, Write &&wr
     }
 }
 
-void check(ppm_status status, const std::string &what) {
-    if (status != PPM_OK)
-        throw std::runtime_error(what + ": " + ppm_status_string(status) + ": " + ppm_last_error_message());
-}
-
 int run(const Options &o) {
     const auto start = std::chrono::steady_clock::now();
-    const std::vector<double> points = BptReader(o.input).read();
+    const std::vector<double> points = read_patches(o.input);
     const size_t patch_count = points.size() / 48;
     const double diag = diagonal(points);
     const double tolerance = o.relative ? o.tolerance * diag : o.tolerance;
