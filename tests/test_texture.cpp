@@ -1,6 +1,7 @@
 // Image textures through OpenImageIO: an 8-bit PNG is decoded from sRGB to linear, v = 0 is
 // the top row, lookups are bilinear between texel centres and repeat outside [0, 1); bad
 // files give clear errors.
+#include "io/obj_reader.h"
 #include "render/material.h"
 #include "render/texture.h"
 
@@ -93,11 +94,22 @@ void bad_files_are_clear_errors(void **) {
 
 } // namespace
 
+// OBJ's vt puts v = 0 at the image's bottom row; libppm (like Mitsuba) at the top: the reader
+// turns vt (u, v) into (u, 1 - v), so an OBJ textured by any other tool looks the same here.
+static void obj_texture_coordinates_follow_the_obj_convention(void **) {
+    const ppm::MeshData mesh =
+        ppm::parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0.25\nvt 0 1\nf 1/1 2/2 3/3\n", "uv.obj");
+    assert_int_equal(mesh.uvs.size(), 6);
+    const double expected[6] = {0, 1, 1, 0.75, 0, 0};
+    for (int i = 0; i < 6; ++i) assert_close(mesh.uvs[i], expected[i], 0);
+}
+
 int main() {
     const CMUnitTest tests[] = {
         cmocka_unit_test(srgb_png_decodes_to_linear_with_top_row_at_v0),
         cmocka_unit_test(material_applies_mapping_and_keeps_energy),
         cmocka_unit_test(bad_files_are_clear_errors),
+        cmocka_unit_test(obj_texture_coordinates_follow_the_obj_convention),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

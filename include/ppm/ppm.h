@@ -167,7 +167,8 @@ PPM_API ppm_status ppm_scene_add_triangle_mesh(ppm_scene scene, const double *po
 
 /* Reads a Wavefront OBJ file (through tinyobjloader; all its shapes become one triangle
  * mesh, polygons triangulated, per-vertex normals and texture coordinates kept when every
- * face has them). Errors: IO, PARSE (message names file and line where the loader says). */
+ * face has them; a `vt u v` becomes uv (u, 1 - v): OBJ's v = 0 is the image's bottom row,
+ * libppm's and Mitsuba's the top). Errors: IO, PARSE (message names file and line where the loader says). */
 PPM_API ppm_status ppm_scene_load_obj(ppm_scene scene, const char *path, uint32_t *out_geom_id);
 
 /* Affine transform of a geometry: 16 doubles, row-major 4x4 matrix M applied to points as

@@ -137,8 +137,10 @@ MeshData parse_obj(const std::string &text, const std::string &name) {
                 }
                 if (all_texcoords) {
                     const size_t t = static_cast<size_t>(index.texcoord_index);
+                    // OBJ's vt has v = 0 at the image's bottom row; libppm (like Mitsuba 3,
+                    // whose OBJ loader does the same) has v = 0 at the top.
                     mesh.uvs.push_back(attrib.texcoords[2 * t]);
-                    mesh.uvs.push_back(attrib.texcoords[2 * t + 1]);
+                    mesh.uvs.push_back(1.0 - attrib.texcoords[2 * t + 1]);
                 }
                 found = vertex_of.emplace(key, id).first;
             }

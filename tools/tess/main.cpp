@@ -27,7 +27,8 @@ const char *const usage_text =
     "a scene file (.json, docs/scene-format.md): then every Bezier shape, placed by its\n"
     "to_world, goes into one mesh.\n"
     "options:\n"
-    "  -o, --output PATH   output file: OBJ (v, vt, vn, f v/vt/vn; seam vertices welded),\n"
+    "  -o, --output PATH   output file: OBJ (v, vt, vn, f v/vt/vn; seam vertices welded;\n"
+    "                      vt = patch (u, 1 - v), the OBJ convention),\n"
     "                      or PLY when PATH ends in .ply or with --ply\n"
     "  --tolerance E       largest distance from the surface, absolute (default: 1e-3\n"
     "                      of the bounding-box diagonal of the control points)\n"
@@ -192,7 +193,8 @@ void write_obj(std::FILE *out, const MeshView &m, const std::string &input) {
         std::fprintf(out, "v %s %s %s\n", exact(p[0], a), exact(p[1], b), exact(p[2], c));
     }
     for (size_t v = 0; v < m.vertex_count; ++v)
-        std::fprintf(out, "vt %s %s\n", exact(m.uvs[2 * v], a), exact(m.uvs[2 * v + 1], b));
+        // OBJ readers (Mitsuba's, libppm's) take vt's v as 1 - v: written so, they get the patch's v.
+        std::fprintf(out, "vt %s %s\n", exact(m.uvs[2 * v], a), exact(1.0 - m.uvs[2 * v + 1], b));
     for (size_t v = 0; v < m.vertex_count; ++v) {
         const double *n = m.normals + 3 * v;
         std::fprintf(out, "vn %s %s %s\n", exact(n[0], a), exact(n[1], b), exact(n[2], c));

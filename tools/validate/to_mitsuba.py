@@ -442,9 +442,8 @@ class Translator:
         tolerance = 1e-4 * np.linalg.norm(points.max(axis=0) - points.min(axis=0))
         base = os.path.join(self.workdir, where.replace("[", "_").replace("]", ""))
         if rects is None:
-            obj = self.tessellate(patches, f"{base}.bpt", tolerance)
-            flip_obj_v(obj)
-            return obj
+            # ppm-tess writes vt = (u, 1 - v), which Mitsuba's OBJ loader reads as the patch's (u, v).
+            return self.tessellate(patches, f"{base}.bpt", tolerance)
         # One patch at a time, so that each vertex's (u, v) can be mapped into its patch's
         # rectangle; the same absolute tolerance keeps shared edges' vertices identical.
         v_lines, vt_lines, vn_lines, f_lines = [], [], [], []
@@ -461,7 +460,7 @@ class Translator:
                 elif w[0] == "vn":
                     vn_lines.append(line.strip())
                 elif w[0] == "vt":
-                    u, v = float(w[1]), float(w[2])
+                    u, v = float(w[1]), 1 - float(w[2])  # the patch's v (ppm-tess writes 1 - v)
                     vt_lines.append(f"vt {u0 + u * (u1 - u0):.9g} {1 - (v0 + v * (v1 - v0)):.9g}")
                 elif w[0] == "f":
                     corners = []
@@ -487,20 +486,6 @@ class Translator:
         if result.returncode != 0:
             raise RuntimeError(f"ppm-tess failed on {bpt_path}: {result.stderr.strip()}")
         return obj_path
-
-
-def flip_obj_v(path):
-    """Mitsuba's OBJ loader turns vt (u, v) into uv (u, 1 - v) (checked with Mitsuba 3.9: an
-    OBJ square and a `rectangle` agree only so), while libppm textures patches by their own
-    (u, v). Writing vt = (u, 1 - v) makes Mitsuba see the patch's (u, v)."""
-    lines = []
-    for line in open(path):
-        w = line.split()
-        if w and w[0] == "vt":
-            line = f"vt {w[1]} {1 - float(w[2])!r}\n"
-        lines.append(line)
-    with open(path, "w") as f:
-        f.writelines(lines)
 
 
 def read_bpt(path):
