@@ -19,7 +19,7 @@ PPM_DEBIAN_PACKAGES=(
   libembree-dev libtbb-dev libtinyobjloader-dev libcmocka-dev
   libopenimageio-dev libopenexr-dev openimageio-tools
   libcgal-dev libgmp-dev libmpfr-dev libnanoflann-dev nlohmann-json3-dev
-  python3 python3-venv python3-pip python3-matplotlib
+  python3 python3-venv python3-pip python3-dev python3-numpy python3-pytest python3-matplotlib
 )
 
 # Prints the packages of PPM_DEBIAN_PACKAGES that are not installed, one per line. Prints
