@@ -1,4 +1,5 @@
 """Progressive photon mapping (``ppm_renderer_*``)."""
+import dataclasses
 import numbers
 import os
 import time
@@ -11,6 +12,7 @@ from ._handle import Handle
 from .camera import Camera
 
 _LAYER_CHANNELS = {"radiance": 3, "radius": 1, "photons": 1}
+_CAMERA_FIELDS = {f.name for f in dataclasses.fields(Camera)}
 
 
 class Renderer(Handle):
@@ -19,6 +21,11 @@ class Renderer(Handle):
     >>> r = ppm.Renderer(scene, ppm.Camera(origin=(0, -5, 1), target=(0, 0, 1),
     ...                  up=(0, 0, 1), fov=40, width=320, height=240), photons_per_pass=100000)
     >>> rgb = r.render(16)                 # (240, 320, 3) float32, linear radiance
+
+    The camera may also be given as keyword arguments (the fields of :class:`Camera`),
+    alone or overriding fields of ``camera``:
+    ``ppm.Renderer(scene, origin=(0, -5, 1), target=(0, 0, 1), up=(0, 0, 1), width=64,
+    height=48, seed=3)``.
 
     Settings (keyword arguments here, or :meth:`set` / :meth:`get`; see ppm.h):
     ``mode`` ("sppm" | "ppm"), ``photons_per_pass``, ``alpha``, ``initial_radius``,
@@ -31,10 +38,13 @@ class Renderer(Handle):
     """
 
     def __init__(self, scene, camera=None, **settings):
+        camera_fields = {k: settings.pop(k) for k in list(settings) if k in _CAMERA_FIELDS}
         if camera is None:
-            camera = Camera()
-        if not isinstance(camera, Camera):
+            camera = Camera(**camera_fields)
+        elif not isinstance(camera, Camera):
             raise TypeError(f"camera: expected ppm.Camera, got {type(camera).__name__}")
+        elif camera_fields:
+            camera = dataclasses.replace(camera, **camera_fields)
         self.scene = scene
         self.camera = camera
         self._core_object = _core.Renderer(scene._core_object, camera._as_tuple())

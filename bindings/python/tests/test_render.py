@@ -104,6 +104,15 @@ def test_layers_properties_and_settings(plane):
             r.layer("depth")
 
 
+def test_camera_as_keyword_arguments(plane):
+    with ppm.Renderer(plane, origin=(0, 0, CAMERA_HEIGHT), target=(0, 0, 0), fov=FOV, width=SIZE,
+                      height=SIZE, photons_per_pass=1000) as a, \
+            ppm.Renderer(plane, camera(), photons_per_pass=1000) as b, \
+            ppm.Renderer(plane, camera(), width=7, photons_per_pass=1000) as c:
+        assert np.array_equal(a.render(1), b.render(1))
+        assert (c.width, c.height, c.camera.fov) == (7, SIZE, FOV)
+
+
 def test_settings_at_creation_and_bad_cameras(plane):
     with pytest.raises(ppm.InvalidArgumentError, match="mode"):
         ppm.Renderer(plane, camera(), mode="bdpt")
