@@ -8,7 +8,7 @@ the run; where the curve flattens it has reached the reference's noise. (Compari
 the run's own final image would force the last point to zero.) The teapot is coated
 (glazed porcelain) and the box is lit by an area light in the ceiling.
 
-    python3 teapot_convergence.py                 # about 1.5 minutes on 2 cores
+    python3 teapot_convergence.py                 # under 2 minutes on 2 cores
     python3 teapot_convergence.py --time 60 --reference-time 240 -o convergence.png
 
 Writes the figure (image, error curve) to --output and prints the curve as a table.
@@ -127,8 +127,8 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     parser.add_argument("-o", "--output", default="teapot_convergence.png", help="PNG to write")
-    parser.add_argument("--time", type=float, default=30, help="seconds of the measured run")
-    parser.add_argument("--reference-time", type=float, default=60,
+    parser.add_argument("--time", type=float, default=20, help="seconds of the measured run")
+    parser.add_argument("--reference-time", type=float, default=80,
                         help="seconds of the reference render")
     parser.add_argument("--reference", metavar="FILE.npy",
                         help="reuse this reference image if it exists, else save it there")
