@@ -5,14 +5,10 @@
 #include "geometry/patch_geometry.h"
 #include "geometry/quad_geometry.h"
 #include "geometry/sphere_geometry.h"
-#include "render/renderer.h"
+#include "api/api_renderer.h"
 
 #include <cmath>
 #include <cstring>
-
-struct ppm_renderer_t : ppm::Renderer {
-    using Renderer::Renderer;
-};
 
 namespace {
 
@@ -38,11 +34,6 @@ template <class Make> ppm_status add_material(ppm_scene scene, uint32_t *out_id,
         ppm::Material material{make(), nullptr, {}};
         write_id(out_id, s.add_material(std::move(material)));
     });
-}
-
-template <class Body> ppm_status renderer_call(ppm_renderer renderer, Body &&body) noexcept {
-    if (!renderer) return guarded(nullptr, [] { invalid_argument("renderer is NULL"); });
-    return guarded(&renderer->context(), [&] { body(*renderer); });
 }
 
 ppm::CameraSettings read_camera(const ppm_camera *camera) {
@@ -248,6 +239,20 @@ ppm_status ppm_renderer_get_layer(ppm_renderer renderer, const char *layer, floa
             invalid_argument("layer '" + std::string(layer) + "' needs " + std::to_string(needed) +
                              " floats, out holds " + std::to_string(count));
         r.read_layer(layer, out);
+    });
+}
+
+ppm_status ppm_renderer_save_checkpoint(ppm_renderer renderer, const char *path) {
+    return renderer_call(renderer, [&](ppm::Renderer &r) {
+        require(path, "path");
+        r.save_checkpoint(path);
+    });
+}
+
+ppm_status ppm_renderer_load_checkpoint(ppm_renderer renderer, const char *path) {
+    return renderer_call(renderer, [&](ppm::Renderer &r) {
+        require(path, "path");
+        r.load_checkpoint(path);
     });
 }
 

@@ -96,6 +96,14 @@ public:
     static size_t layer_channels(const std::string &name); // throws for an unknown name
     void read_layer(const std::string &name, float *out) const;
 
+    // Checkpoints (checkpoint.cpp; the file layout is described there). save may run during
+    // a pass and saves the state after the last completed one, atomically. load only before
+    // the first pass; throws ppm::Error: IO, PARSE (not a checkpoint, other version,
+    // corrupt), INVALID_ARGUMENT (another scene, camera or fixed settings),
+    // INVALID_OPERATION (a pass has run).
+    void save_checkpoint(const std::string &path) const;
+    void load_checkpoint(const std::string &path);
+
 private:
     void eye_pass(std::uint32_t pass);
     void photon_pass(std::uint32_t pass);
@@ -117,9 +125,13 @@ private:
     void trace_photon(std::uint64_t index, std::uint32_t pass, std::vector<PhotonHit> &hits) const;
     void gather_sorted();
     void deposit(const PhotonHit &photon);
+    // What a checkpoint records to recognise its render.
+    std::uint64_t camera_hash() const;
+    std::uint64_t scene_hash() const;
 
     Scene *scene_; // retained
     RenderScene render_scene_;
+    CameraSettings camera_settings_;
     Camera camera_;
     RenderSettings settings_;
 

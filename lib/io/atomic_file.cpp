@@ -1,0 +1,51 @@
+#include "io/atomic_file.h"
+
+#include "core/error.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <vector>
+
+namespace ppm {
+
+void write_file_atomically(const std::string &path, const void *data, std::size_t size) {
+    std::string temp_name = path + ".tmp-XXXXXX";
+    std::vector<char> temp(temp_name.begin(), temp_name.end());
+    temp.push_back('\0');
+    const int fd = mkstemp(temp.data());
+    if (fd < 0) fail(PPM_ERROR_IO, path + ": cannot create a temporary file beside it: " + std::strerror(errno));
+    temp_name = temp.data();
+    const auto give_up = [&](const char *what) {
+        const int error = errno;
+        close(fd);
+        std::remove(temp_name.c_str());
+        fail(PPM_ERROR_IO, path + ": " + what + ": " + std::strerror(error));
+    };
+    const char *bytes = static_cast<const char *>(data);
+    for (std::size_t written = 0; written < size;) {
+        const ssize_t n = write(fd, bytes + written, size - written);
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            give_up("write error");
+        }
+        written += static_cast<std::size_t>(n);
+    }
+    // mkstemp creates the file 0600; make it an ordinary readable file (reading the umask
+    // would mean changing it, which is not thread safe).
+    if (fchmod(fd, 0644) != 0) give_up("cannot set permissions");
+    if (fsync(fd) != 0) give_up("cannot flush to disk");
+    if (close(fd) != 0) {
+        std::remove(temp_name.c_str());
+        fail(PPM_ERROR_IO, path + ": write error: " + std::strerror(errno));
+    }
+    if (std::rename(temp_name.c_str(), path.c_str()) != 0) {
+        const int error = errno;
+        std::remove(temp_name.c_str());
+        fail(PPM_ERROR_IO, path + ": cannot replace it: " + std::strerror(error));
+    }
+}
+
+} // namespace ppm

@@ -1,0 +1,224 @@
+// Renderer::save_checkpoint and load_checkpoint: the progressive state in a versioned binary
+// file.
+//
+// Layout (native byte order, which the header records):
+//   "PPMCKPT\0", u32 version, u32 byte-order mark 0x01020304
+//   u32 width, u32 height, u32 mode, u32 direct_lighting, u64 seed,
+//   f64 initial_radius, f64 initial_radius_pixels, u64 camera hash, u64 scene hash
+//   u64 passes, u64 photons emitted, u64 slot count n
+//   n x u32 pixel of each slot, n x 8 f64 statistics (N, R^2, tau rgb, direct rgb)
+//   u64 FNV-1a hash of every byte before it
+// In PPM mode the fixed hit points are not stored: the first eye pass is deterministic, so
+// load_checkpoint traces it again and checks that it gives the same slots.
+#include "render/renderer.h"
+
+#include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/text_file.h"
+
+#include <cstring>
+#include <type_traits>
+
+namespace ppm {
+
+namespace {
+
+constexpr char kMagic[8] = {'P', 'P', 'M', 'C', 'K', 'P', 'T', '\0'};
+constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kByteOrderMark = 0x01020304;
+
+class Fnv1a {
+public:
+    void add(const void *data, std::size_t size) {
+        const auto *bytes = static_cast<const unsigned char *>(data);
+        for (std::size_t i = 0; i < size; ++i) hash_ = (hash_ ^ bytes[i]) * 1099511628211ull;
+    }
+    template <class T> void add(const T &value) {
+        static_assert(std::is_arithmetic_v<T>);
+        add(&value, sizeof value);
+    }
+    void add(const Vec3 &v) { add(v.x), add(v.y), add(v.z); }
+    void add(const Rgb &c) { add(c.r), add(c.g), add(c.b); }
+    std::uint64_t value() const { return hash_; }
+
+private:
+    std::uint64_t hash_ = 14695981039346656037ull;
+};
+
+class Writer {
+public:
+    template <class T> void put(const T &value) { put_bytes(&value, sizeof value); }
+    void put_bytes(const void *data, std::size_t size) {
+        const auto *bytes = static_cast<const char *>(data);
+        buffer_.insert(buffer_.end(), bytes, bytes + size);
+    }
+    std::vector<char> &buffer() { return buffer_; }
+
+private:
+    std::vector<char> buffer_;
+};
+
+class Reader {
+public:
+    Reader(const std::string &path, const std::string &bytes) : path_(path), bytes_(bytes) {}
+    template <class T> T get(const char *what) {
+        T value;
+        get_bytes(&value, sizeof value, what);
+        return value;
+    }
+    void get_bytes(void *out, std::size_t size, const char *what) {
+        if (bytes_.size() - position_ < size)
+            fail(PPM_ERROR_PARSE, path_ + ": truncated checkpoint (ends in the " + what + ")");
+        std::memcpy(out, bytes_.data() + position_, size);
+        position_ += size;
+    }
+    std::size_t position() const { return position_; }
+    std::size_t remaining() const { return bytes_.size() - position_; }
+
+private:
+    const std::string &path_;
+    const std::string &bytes_;
+    std::size_t position_ = 0;
+};
+
+} // namespace
+
+std::uint64_t Renderer::camera_hash() const {
+    Fnv1a h;
+    const CameraSettings &c = camera_settings_;
+    h.add(c.origin), h.add(c.target), h.add(c.up), h.add(c.fov), h.add(c.width), h.add(c.height);
+    h.add(c.aperture_radius), h.add(c.focus_distance), h.add(c.near_clip);
+    return h.value();
+}
+
+// What identifies a scene well enough to refuse a foreign checkpoint: its geometries (kind,
+// primitive count, placement, material, emission), bounds, materials and lights' power.
+std::uint64_t Renderer::scene_hash() const {
+    Fnv1a h;
+    h.add(scene_->geometry_count());
+    for (std::size_t g = 0; g < scene_->geometry_count(); ++g) {
+        const Geometry &geometry = scene_->geometry(static_cast<std::uint32_t>(g));
+        h.add(geometry.kind(), std::strlen(geometry.kind()));
+        h.add(geometry.primitive_count());
+        for (const auto &row : geometry.transform.m)
+            for (double v : row) h.add(v);
+        h.add(geometry.material);
+        h.add(geometry.emission);
+    }
+    h.add(scene_->bounds().lower), h.add(scene_->bounds().upper);
+    h.add(scene_->materials().size());
+    h.add(scene_->lights().size());
+    h.add(render_scene_.total_power());
+    return h.value();
+}
+
+void Renderer::save_checkpoint(const std::string &path) const {
+    Writer w;
+    {
+        std::lock_guard<std::mutex> lock(stats_mutex_);
+        const std::uint64_t passes = passes_.load();
+        // Before the first pass completes, the slots may be changing (PPM's first eye pass):
+        // there is nothing to save but the identity.
+        const std::uint64_t slots = passes == 0 ? 0 : slot_pixel_.size();
+        w.put_bytes(kMagic, sizeof kMagic);
+        w.put(kVersion), w.put(kByteOrderMark);
+        w.put(static_cast<std::uint32_t>(width())), w.put(static_cast<std::uint32_t>(height()));
+        w.put(static_cast<std::uint32_t>(settings_.mode)), w.put(static_cast<std::uint32_t>(settings_.direct_lighting));
+        w.put(settings_.seed), w.put(settings_.initial_radius), w.put(settings_.initial_radius_pixels);
+        w.put(camera_hash()), w.put(scene_hash());
+        w.put(passes), w.put(photons_emitted_.load()), w.put(slots);
+        if (slots > 0) {
+            w.put_bytes(slot_pixel_.data(), slots * sizeof(std::uint32_t));
+            for (std::size_t i = 0; i < slots; ++i) {
+                const PixelStatistics &s = stats_[i];
+                const double values[8] = {s.n, s.r2, s.tau.r, s.tau.g, s.tau.b, s.direct.r, s.direct.g, s.direct.b};
+                w.put_bytes(values, sizeof values);
+            }
+        }
+    }
+    Fnv1a h;
+    h.add(w.buffer().data(), w.buffer().size());
+    w.put(h.value());
+    write_file_atomically(path, w.buffer().data(), w.buffer().size());
+}
+
+void Renderer::load_checkpoint(const std::string &path) {
+    std::unique_lock<std::mutex> one_pass(pass_mutex_, std::try_to_lock);
+    if (!one_pass.owns_lock()) fail(PPM_ERROR_INVALID_OPERATION, "a pass of this renderer is running");
+    if (started()) fail(PPM_ERROR_INVALID_OPERATION, "a checkpoint can only be loaded before the first pass");
+
+    const std::string bytes = read_text_file(path);
+    Reader r(path, bytes);
+    char magic[sizeof kMagic];
+    r.get_bytes(magic, sizeof magic, "header");
+    if (std::memcmp(magic, kMagic, sizeof magic) != 0) fail(PPM_ERROR_PARSE, path + ": not a libppm checkpoint");
+    const auto version = r.get<std::uint32_t>("header");
+    if (version != kVersion)
+        fail(PPM_ERROR_PARSE, path + ": checkpoint version " + std::to_string(version) + "; this libppm reads version " +
+                                  std::to_string(kVersion));
+    if (r.get<std::uint32_t>("header") != kByteOrderMark)
+        fail(PPM_ERROR_PARSE, path + ": checkpoint written on a machine of another byte order");
+    if (bytes.size() < sizeof(std::uint64_t)) fail(PPM_ERROR_PARSE, path + ": truncated checkpoint");
+    Fnv1a h;
+    h.add(bytes.data(), bytes.size() - sizeof(std::uint64_t));
+    std::uint64_t stored_hash;
+    std::memcpy(&stored_hash, bytes.data() + bytes.size() - sizeof stored_hash, sizeof stored_hash);
+
+    // The recorded identity, checked field by field so that the message says what differs.
+    const auto width_ = r.get<std::uint32_t>("header"), height_ = r.get<std::uint32_t>("header");
+    const auto mode = r.get<std::uint32_t>("header"), direct = r.get<std::uint32_t>("header");
+    const auto seed = r.get<std::uint64_t>("header");
+    const auto radius = r.get<double>("header"), radius_pixels = r.get<double>("header");
+    const auto camera = r.get<std::uint64_t>("header"), scene = r.get<std::uint64_t>("header");
+    const auto passes = r.get<std::uint64_t>("header"), emitted = r.get<std::uint64_t>("header");
+    const auto slots = r.get<std::uint64_t>("header");
+    const std::uint64_t body = slots * (sizeof(std::uint32_t) + 8 * sizeof(double)) + sizeof(std::uint64_t);
+    if (slots > (std::uint64_t(1) << 40) || r.remaining() != body || stored_hash != h.value())
+        fail(PPM_ERROR_PARSE, path + ": corrupt or truncated checkpoint (size or checksum does not match)");
+
+    const auto differs = [&](const std::string &what, const std::string &theirs, const std::string &ours) {
+        invalid_argument(path + ": checkpoint of another render: its " + what + " is " + theirs + ", this renderer's is " +
+                         ours);
+    };
+    if (width_ != static_cast<std::uint32_t>(width()) || height_ != static_cast<std::uint32_t>(height()))
+        differs("image size", std::to_string(width_) + " x " + std::to_string(height_),
+                std::to_string(width()) + " x " + std::to_string(height()));
+    if (mode != static_cast<std::uint32_t>(settings_.mode))
+        differs("mode", mode == 0 ? "sppm" : "ppm", settings_.get_string("mode"));
+    if (direct != static_cast<std::uint32_t>(settings_.direct_lighting))
+        differs("direct_lighting", std::to_string(direct), std::to_string(settings_.direct_lighting));
+    if (seed != settings_.seed) differs("seed", std::to_string(seed), std::to_string(settings_.seed));
+    if (radius != settings_.initial_radius || radius_pixels != settings_.initial_radius_pixels)
+        differs("initial radius (scene units, pixels)", format_number(radius) + ", " + format_number(radius_pixels),
+                format_number(settings_.initial_radius) + ", " + format_number(settings_.initial_radius_pixels));
+    if (camera != camera_hash()) invalid_argument(path + ": checkpoint of another render: the camera differs");
+    if (scene != scene_hash()) invalid_argument(path + ": checkpoint of another render: the scene differs");
+    if (slots == 0) return; // saved before any pass completed: nothing to restore
+
+    std::vector<std::uint32_t> pixels(slots);
+    r.get_bytes(pixels.data(), slots * sizeof(std::uint32_t), "slots");
+    std::vector<PixelStatistics> stats(slots);
+    for (PixelStatistics &s : stats) {
+        double v[8];
+        r.get_bytes(v, sizeof v, "statistics");
+        s.n = v[0], s.r2 = v[1], s.tau = Rgb{v[2], v[3], v[4]}, s.direct = Rgb{v[5], v[6], v[7]};
+    }
+
+    // Rebuild the slots as the first pass made them, then take the statistics.
+    slot_pixel_.clear();
+    eye_pass(0);
+    if (cancelled()) {
+        slot_pixel_.clear();
+        fail(PPM_ERROR_CANCELLED, "loading the checkpoint was cancelled");
+    }
+    if (slot_pixel_ != pixels) {
+        slot_pixel_.clear();
+        invalid_argument(path + ": checkpoint of another render: its hit points differ from this renderer's");
+    }
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    stats_ = std::move(stats);
+    photons_emitted_.store(emitted);
+    passes_.store(passes);
+}
+
+} // namespace ppm

@@ -1,0 +1,207 @@
+#include "scenefile/json_node.h"
+
+#include "core/error.h"
+#include "io/text_file.h"
+
+#include <json/reader.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <regex>
+#include <sstream>
+
+namespace ppm {
+
+namespace {
+
+[[noreturn]] void parse_error(const std::string &message) { fail(PPM_ERROR_PARSE, message); }
+
+// jsoncpp's messages look like "* Line 3, Column 5\n  Missing ',' or '}' in object declaration\n";
+// this turns the first one into "path:3:5: Missing ',' or '}' in object declaration".
+std::string first_jsoncpp_error(const std::string &path, const std::string &errors) {
+    static const std::regex first(R"(\* Line (\d+), Column (\d+)\s*\n\s*([^\n]*))");
+    std::smatch match;
+    if (std::regex_search(errors, match, first))
+        return path + ":" + match[1].str() + ":" + match[2].str() + ": " + match[3].str();
+    return path + ": " + errors;
+}
+
+std::string describe_allowed(std::initializer_list<const char *> allowed) {
+    std::string list;
+    for (const char *key : allowed) list += (list.empty() ? "" : ", ") + std::string(key);
+    return list;
+}
+
+} // namespace
+
+std::string join_key_path(const std::string &parent, const std::string &key) {
+    return parent.empty() ? key : parent + "." + key;
+}
+
+JsonDocument::JsonDocument(const std::string &path) : path_(path), text_(read_text_file(path)) {
+    line_starts_.push_back(0);
+    for (std::size_t i = 0; i < text_.size(); ++i)
+        if (text_[i] == '\n') line_starts_.push_back(i + 1);
+
+    Json::CharReaderBuilder builder;
+    builder["allowComments"] = true;
+    builder["strictRoot"] = true;
+    builder["allowDroppedNullPlaceholders"] = false;
+    builder["allowNumericKeys"] = false;
+    builder["allowSingleQuotes"] = false;
+    builder["failIfExtra"] = true;
+    builder["allowTrailingCommas"] = false;
+    builder["rejectDupKeys"] = true;
+    builder["allowSpecialFloats"] = false;
+    builder["stackLimit"] = 200;
+    const std::unique_ptr<Json::CharReader> reader(builder.newCharReader());
+    std::string errors;
+    if (!reader->parse(text_.data(), text_.data() + text_.size(), &root_, &errors))
+        parse_error(first_jsoncpp_error(path_, errors));
+    if (!root_.isObject()) parse_error(location(root_) + ": the scene must be a JSON object { ... }");
+}
+
+std::string JsonDocument::location(const Json::Value &value) const {
+    const std::ptrdiff_t offset = value.getOffsetStart();
+    if (offset < 0 || static_cast<std::size_t>(offset) > text_.size()) return path_;
+    const auto line = std::upper_bound(line_starts_.begin(), line_starts_.end(), static_cast<std::size_t>(offset)) - 1;
+    const std::size_t line_number = static_cast<std::size_t>(line - line_starts_.begin()) + 1;
+    const std::size_t column = static_cast<std::size_t>(offset) - *line + 1;
+    return path_ + ":" + std::to_string(line_number) + ":" + std::to_string(column);
+}
+
+std::string JsonNode::where() const {
+    const std::string location = document_->location(*value_);
+    return key_path_.empty() ? location : location + ": " + key_path_;
+}
+
+void JsonNode::fail(const std::string &message) const { parse_error(where() + ": " + message); }
+
+void JsonNode::require_object() const {
+    if (!value_->isObject()) fail("expected an object { ... }");
+}
+
+void JsonNode::allow_only(std::initializer_list<const char *> allowed) const {
+    require_object();
+    for (const std::string &key : value_->getMemberNames()) {
+        const bool known = std::any_of(allowed.begin(), allowed.end(), [&](const char *a) { return key == a; });
+        if (!known)
+            JsonNode(*document_, (*value_)[key], join_key_path(key_path_, key))
+                .fail("unknown key (allowed here: " + describe_allowed(allowed) + ")");
+    }
+}
+
+bool JsonNode::has(const char *key) const { return value_->isObject() && value_->isMember(key); }
+
+JsonNode JsonNode::at(const char *key) const {
+    require_object();
+    const Json::Value *member = value_->find(key, key + std::char_traits<char>::length(key));
+    if (!member) fail(std::string("missing key '") + key + "'");
+    return JsonNode(*document_, *member, join_key_path(key_path_, key));
+}
+
+std::vector<std::string> JsonNode::keys() const {
+    require_object();
+    std::vector<std::string> names = value_->getMemberNames();
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+void JsonNode::require_array() const {
+    if (!value_->isArray()) fail("expected an array [ ... ]");
+}
+
+JsonNode JsonNode::operator[](std::size_t index) const {
+    return JsonNode(*document_, (*value_)[static_cast<Json::ArrayIndex>(index)],
+                    key_path_ + "[" + std::to_string(index) + "]");
+}
+
+double JsonNode::number() const {
+    if (!is_number()) fail("expected a number");
+    const double v = value_->asDouble();
+    if (!std::isfinite(v)) fail("expected a finite number");
+    return v;
+}
+
+double JsonNode::number_in(double low, double high, bool low_open, bool high_open) const {
+    const double v = is_number() ? value_->asDouble() : std::numeric_limits<double>::quiet_NaN();
+    const bool above = low_open ? v > low : v >= low;
+    const bool below = high_open ? v < high : v <= high;
+    if (!(above && below && std::isfinite(v))) {
+        std::ostringstream range;
+        range << "expected a number in " << (low_open ? "(" : "[") << format_number(low) << ", "
+              << format_number(high) << (high_open ? ")" : "]");
+        fail(range.str());
+    }
+    return v;
+}
+
+double JsonNode::positive() const {
+    const double v = is_number() ? value_->asDouble() : 0;
+    if (!(v > 0 && std::isfinite(v))) fail("expected a number > 0");
+    return v;
+}
+
+double JsonNode::non_negative() const {
+    const double v = is_number() ? value_->asDouble() : -1;
+    if (!(v >= 0 && std::isfinite(v))) fail("expected a number >= 0");
+    return v;
+}
+
+std::int64_t JsonNode::integer(std::int64_t low, std::int64_t high) const {
+    const std::string range = "expected a whole number in [" + std::to_string(low) + ", " + std::to_string(high) + "]";
+    if (!is_number()) fail(range);
+    const double v = value_->asDouble();
+    if (!(std::floor(v) == v && v >= static_cast<double>(low) && v <= static_cast<double>(high))) fail(range);
+    return value_->isIntegral() && !value_->isDouble() ? value_->asInt64() : static_cast<std::int64_t>(v);
+}
+
+bool JsonNode::boolean() const {
+    if (!value_->isBool()) fail("expected true or false");
+    return value_->asBool();
+}
+
+std::string JsonNode::string() const {
+    if (!value_->isString()) fail("expected a string");
+    return value_->asString();
+}
+
+std::string JsonNode::one_of(std::initializer_list<const char *> choices) const {
+    const std::string expected = "expected one of: " + describe_allowed(choices);
+    if (!value_->isString()) fail(expected);
+    const std::string s = value_->asString();
+    for (const char *choice : choices)
+        if (s == choice) return s;
+    fail("'" + s + "' is not known; " + expected);
+}
+
+std::array<double, 3> JsonNode::vec3() const {
+    if (!value_->isArray() || value_->size() != 3) fail("expected an array of 3 numbers [x, y, z]");
+    return {(*this)[0].number(), (*this)[1].number(), (*this)[2].number()};
+}
+
+std::array<double, 3> JsonNode::color(bool reflectance) const {
+    std::array<double, 3> c{};
+    if (is_number()) {
+        const double v = number();
+        c = {v, v, v};
+    } else if (value_->isArray()) {
+        if (value_->size() != 3) fail("expected a colour: a number, [r, g, b] or {\"type\": \"rgb\", \"value\": ...}");
+        c = vec3();
+    } else if (value_->isObject()) {
+        allow_only({"type", "value"});
+        if (at("type").one_of({"rgb"}) != "rgb") fail("expected type 'rgb'");
+        return at("value").color(reflectance);
+    } else {
+        fail("expected a colour: a number, [r, g, b] or {\"type\": \"rgb\", \"value\": ...}");
+    }
+    for (double v : c) {
+        if (v < 0) fail("colour channels must be >= 0");
+        if (reflectance && v > 1) fail("a reflectance must lie in [0, 1] in every channel (energy conservation)");
+    }
+    return c;
+}
+
+} // namespace ppm

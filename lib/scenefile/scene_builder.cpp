@@ -1,0 +1,246 @@
+#include "scenefile/scene_builder.h"
+
+#include "core/error.h"
+#include "scenefile/transform.h"
+
+#include <sys/stat.h>
+
+#include <array>
+#include <vector>
+
+namespace ppm {
+
+namespace {
+
+std::array<double, 3> to_array(const Vec3 &v) { return {v.x, v.y, v.z}; }
+
+} // namespace
+
+void SceneBuilder::check(const JsonNode &node, ppm_status status) const {
+    if (status != PPM_OK) fail(status, node.where() + ": " + ppm_last_error_message());
+}
+
+std::string SceneBuilder::existing_file(const JsonNode &filename) const {
+    const std::string name = filename.string();
+    if (name.empty()) filename.fail("expected a file name");
+    const std::string path = name[0] == '/' ? name : folder_ + name;
+    struct stat info {};
+    if (stat(path.c_str(), &info) != 0 || !S_ISREG(info.st_mode))
+        fail(PPM_ERROR_IO, filename.where() + ": file not found: " + path);
+    return path;
+}
+
+// ---------------------------------------------------------------------------------------------
+// bsdfs
+
+void SceneBuilder::add_bsdfs(const JsonNode &bsdfs) {
+    bsdfs.require_object();
+    for (const std::string &name : bsdfs.keys()) named_bsdfs_[name] = add_bsdf(bsdfs.at(name.c_str()));
+}
+
+std::uint32_t SceneBuilder::add_bsdf(const JsonNode &bsdf) {
+    bsdf.require_object();
+    const std::string type = bsdf.at("type").one_of({"diffuse", "conductor", "dielectric", "plastic"});
+    std::uint32_t id = 0;
+    // The colour key, which may instead hold a bitmap texture.
+    const char *color_key = nullptr;
+    double default_color = 0.5;
+    if (type == "diffuse") {
+        bsdf.allow_only({"type", "reflectance"});
+        color_key = "reflectance";
+    } else if (type == "conductor") {
+        bsdf.allow_only({"type", "specular_reflectance", "material"});
+        if (bsdf.has("material")) bsdf.at("material").one_of({"none"});
+        color_key = "specular_reflectance";
+        default_color = 1;
+    } else if (type == "plastic") {
+        bsdf.allow_only({"type", "diffuse_reflectance", "int_ior", "ext_ior", "nonlinear"});
+        if (bsdf.has("nonlinear") && bsdf.at("nonlinear").boolean())
+            bsdf.at("nonlinear").fail("nonlinear plastic is not supported (only false)");
+        color_key = "diffuse_reflectance";
+    } else {
+        bsdf.allow_only({"type", "int_ior", "ext_ior"});
+    }
+
+    std::array<double, 3> color{default_color, default_color, default_color};
+    const bool textured = color_key && bsdf.has(color_key) && bsdf.at(color_key).is_object() &&
+                          bsdf.at(color_key).has("type") && bsdf.at(color_key).at("type").is_string() &&
+                          bsdf.at(color_key).at("type").string() == "bitmap";
+    if (color_key && bsdf.has(color_key) && !textured) color = bsdf.at(color_key).color(true);
+    const auto ior = [&](const char *key, double fallback) {
+        return bsdf.has(key) ? bsdf.at(key).positive() : fallback;
+    };
+
+    if (type == "diffuse") {
+        check(bsdf, ppm_scene_add_diffuse_material(scene_, color.data(), &id));
+    } else if (type == "conductor") {
+        check(bsdf, ppm_scene_add_mirror_material(scene_, color.data(), &id));
+    } else if (type == "plastic") {
+        check(bsdf, ppm_scene_add_coated_material(scene_, color.data(), ior("int_ior", 1.49), ior("ext_ior", 1.000277), &id));
+    } else {
+        check(bsdf, ppm_scene_add_dielectric_material(scene_, ior("int_ior", 1.5046), ior("ext_ior", 1.000277), &id));
+    }
+
+    if (textured) {
+        const JsonNode texture = bsdf.at(color_key);
+        texture.allow_only({"type", "filename", "scale", "offset"});
+        const std::string path = existing_file(texture.at("filename"));
+        std::array<double, 2> scale{1, 1}, offset{0, 0};
+        if (texture.has("scale")) {
+            const JsonNode s = texture.at("scale");
+            if (s.is_number()) {
+                scale = {s.number(), s.number()};
+            } else {
+                if (!s.is_array() || s.size() != 2) s.fail("expected a number or [su, sv]");
+                scale = {s[0].number(), s[1].number()};
+            }
+            if (scale[0] == 0 || scale[1] == 0) s.fail("a texture scale must not be zero");
+        }
+        if (texture.has("offset")) {
+            const JsonNode o = texture.at("offset");
+            if (!o.is_array() || o.size() != 2) o.fail("expected [ou, ov]");
+            offset = {o[0].number(), o[1].number()};
+        }
+        check(texture, ppm_scene_set_material_texture(scene_, id, path.c_str(), scale.data(), offset.data()));
+    }
+    return id;
+}
+
+// ---------------------------------------------------------------------------------------------
+// emitters
+
+void SceneBuilder::add_emitters(const JsonNode &emitters) {
+    emitters.require_array();
+    for (std::size_t i = 0; i < emitters.size(); ++i) add_emitter(emitters[i]);
+}
+
+void SceneBuilder::add_emitter(const JsonNode &emitter) {
+    emitter.require_object();
+    const std::string type = emitter.at("type").one_of({"point", "spot"});
+    const std::array<double, 3> intensity =
+        emitter.has("intensity") ? emitter.at("intensity").color(false) : std::array<double, 3>{1, 1, 1};
+    if (type == "point") {
+        emitter.allow_only({"type", "position", "intensity"});
+        const std::array<double, 3> position = emitter.vec3_or("position", {0, 0, 0});
+        check(emitter, ppm_scene_add_point_light(scene_, position.data(), intensity.data(), nullptr));
+        return;
+    }
+    emitter.allow_only({"type", "to_world", "intensity", "cutoff_angle", "beam_width"});
+    const Affine to_world = parse_transform(emitter.at("to_world"));
+    const double cutoff = emitter.has("cutoff_angle") ? emitter.at("cutoff_angle").number_in(0, 90, true, false) : 20.0;
+    const double beam = emitter.has("beam_width") ? emitter.at("beam_width").number_in(0, cutoff, true, false)
+                                                  : cutoff * 0.75;
+    const std::array<double, 3> position = to_array(to_world.point({0, 0, 0}));
+    const std::array<double, 3> target = to_array(to_world.point({0, 0, 1}));
+    check(emitter, ppm_scene_add_spot_light(scene_, position.data(), target.data(), intensity.data(), cutoff, beam, nullptr));
+}
+
+// ---------------------------------------------------------------------------------------------
+// shapes
+
+void SceneBuilder::add_shapes(const JsonNode &shapes) {
+    shapes.require_array();
+    if (shapes.size() == 0) shapes.fail("a scene needs at least one shape");
+    for (std::size_t i = 0; i < shapes.size(); ++i) add_shape(shapes[i]);
+}
+
+std::uint32_t SceneBuilder::shape_material(const JsonNode &shape) {
+    if (shape.has("bsdf")) {
+        const JsonNode bsdf = shape.at("bsdf");
+        if (bsdf.is_object()) return add_bsdf(bsdf);
+        const std::string name = bsdf.string();
+        const auto found = named_bsdfs_.find(name);
+        if (found == named_bsdfs_.end()) bsdf.fail("no bsdf named '" + name + "' in bsdfs");
+        return found->second;
+    }
+    if (!has_default_material_) {
+        const double grey[3] = {0.5, 0.5, 0.5};
+        check(shape, ppm_scene_add_diffuse_material(scene_, grey, &default_material_));
+        has_default_material_ = true;
+    }
+    return default_material_;
+}
+
+void SceneBuilder::add_shape(const JsonNode &shape) {
+    shape.require_object();
+    const std::string type = shape.at("type").one_of({"sphere", "rectangle", "quad", "obj", "bezier"});
+    const Affine to_world = shape.has("to_world") ? parse_transform(shape.at("to_world")) : Affine{};
+    // Transforms that the shape cannot take in its own parameters go to the geometry.
+    bool transform_geometry = !is_identity(to_world);
+    std::uint32_t geom = 0;
+
+    if (type == "sphere") {
+        shape.allow_only({"type", "bsdf", "emitter", "to_world", "center", "radius"});
+        const std::array<double, 3> center = shape.vec3_or("center", {0, 0, 0});
+        const double radius = shape.has("radius") ? shape.at("radius").positive() : 1.0;
+        check(shape, ppm_scene_add_sphere(scene_, center.data(), radius, &geom));
+    } else if (type == "rectangle" || type == "quad") {
+        if (type == "rectangle") {
+            shape.allow_only({"type", "bsdf", "emitter", "to_world"});
+        } else {
+            shape.allow_only({"type", "bsdf", "emitter", "to_world", "origin", "edge_u", "edge_v"});
+        }
+        // Mitsuba's rectangle is [-1, 1]^2 at z = 0 with normal +z.
+        const Vec3 origin = type == "rectangle" ? Vec3{-1, -1, 0} : Vec3::from(shape.at("origin").vec3().data());
+        const Vec3 edge_u = type == "rectangle" ? Vec3{2, 0, 0} : Vec3::from(shape.at("edge_u").vec3().data());
+        const Vec3 edge_v = type == "rectangle" ? Vec3{0, 2, 0} : Vec3::from(shape.at("edge_v").vec3().data());
+        const std::array<double, 3> o = to_array(to_world.point(origin)), u = to_array(to_world.vector(edge_u)),
+                                    v = to_array(to_world.vector(edge_v));
+        check(shape, ppm_scene_add_quad(scene_, o.data(), u.data(), v.data(), &geom));
+        transform_geometry = false;
+    } else if (type == "obj") {
+        shape.allow_only({"type", "bsdf", "emitter", "to_world", "filename"});
+        const JsonNode filename = shape.at("filename");
+        check(filename, ppm_scene_load_obj(scene_, existing_file(filename).c_str(), &geom));
+    } else {
+        shape.allow_only({"type", "bsdf", "emitter", "to_world", "filename", "patches", "uv_rects"});
+        if (shape.has("filename") == shape.has("patches")) shape.fail("a bezier shape needs either 'filename' or 'patches'");
+        if (shape.has("filename")) {
+            const JsonNode filename = shape.at("filename");
+            check(filename, ppm_scene_load_bpt(scene_, existing_file(filename).c_str(), &geom));
+        } else {
+            const JsonNode patches = shape.at("patches");
+            patches.require_array();
+            if (patches.size() == 0) patches.fail("expected at least one patch");
+            std::vector<double> points;
+            for (std::size_t p = 0; p < patches.size(); ++p) {
+                const JsonNode patch = patches[p];
+                if (!patch.is_array() || patch.size() != 16) patch.fail("expected 16 control points [x, y, z]");
+                for (std::size_t k = 0; k < 16; ++k)
+                    for (double c : patch[k].vec3()) points.push_back(c);
+            }
+            check(patches, ppm_scene_add_bezier_patches(scene_, points.data(), patches.size(), &geom));
+        }
+        if (shape.has("uv_rects")) {
+            const JsonNode rects = shape.at("uv_rects");
+            std::size_t patch_count = 0;
+            check(shape, ppm_scene_get_primitive_count(scene_, geom, &patch_count));
+            rects.require_array();
+            if (rects.size() != patch_count)
+                rects.fail("expected one [u0, v0, u1, v1] per patch (" + std::to_string(patch_count) + ")");
+            std::vector<double> values;
+            for (std::size_t p = 0; p < rects.size(); ++p) {
+                const JsonNode rect = rects[p];
+                if (!rect.is_array() || rect.size() != 4) rect.fail("expected [u0, v0, u1, v1]");
+                for (std::size_t k = 0; k < 4; ++k) values.push_back(rect[k].number());
+            }
+            check(rects, ppm_scene_set_patch_uv_rects(scene_, geom, values.data()));
+        }
+    }
+
+    if (transform_geometry) {
+        const std::array<double, 16> matrix = matrix16(to_world);
+        check(shape.at("to_world"), ppm_scene_set_geometry_transform(scene_, geom, matrix.data()));
+    }
+    check(shape, ppm_scene_set_geometry_material(scene_, geom, shape_material(shape)));
+    if (shape.has("emitter")) {
+        const JsonNode emitter = shape.at("emitter");
+        emitter.allow_only({"type", "radiance"});
+        emitter.at("type").one_of({"area"});
+        const std::array<double, 3> radiance = emitter.has("radiance") ? emitter.at("radiance").color(false)
+                                                                       : std::array<double, 3>{1, 1, 1};
+        check(emitter, ppm_scene_set_geometry_emission(scene_, geom, radiance.data()));
+    }
+}
+
+} // namespace ppm

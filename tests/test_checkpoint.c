@@ -1,0 +1,212 @@
+/* Checkpoints: a render stopped and resumed equals the uninterrupted render bit for bit, and
+ * every kind of wrong checkpoint is refused with a message that says why. */
+#include <ppm/ppm.h>
+
+#include "test_support.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static const char *const small_box = PPM_TEST_DATA_DIR "/scenes/small_box.json";
+
+typedef struct fixture {
+    ppm_context context;
+    ppm_scene_file file;
+    char folder[64];
+    char path[128];
+} fixture;
+
+static int setup(void **state) {
+    fixture *f = calloc(1, sizeof *f);
+    assert_non_null(f);
+    assert_int_equal(ppm_context_create(&f->context), PPM_OK);
+    assert_int_equal(ppm_scene_file_load(f->context, small_box, &f->file), PPM_OK);
+    strcpy(f->folder, "/tmp/ppm-checkpoint-test-XXXXXX");
+    assert_non_null(mkdtemp(f->folder));
+    snprintf(f->path, sizeof f->path, "%s/render.ppmckpt", f->folder);
+    *state = f;
+    return 0;
+}
+
+static int teardown(void **state) {
+    fixture *f = *state;
+    char command[160];
+    snprintf(command, sizeof command, "rm -rf '%s'", f->folder);
+    assert_int_equal(system(command), 0);
+    ppm_scene_file_release(f->file);
+    ppm_context_release(f->context);
+    free(f);
+    return 0;
+}
+
+static ppm_renderer new_renderer(fixture *f, const char *mode) {
+    ppm_renderer r = NULL;
+    assert_int_equal(ppm_scene_file_create_renderer(f->file, &r), PPM_OK);
+    assert_int_equal(ppm_renderer_set_string(r, "mode", mode), PPM_OK);
+    assert_int_equal(ppm_renderer_set_int(r, "photons_per_pass", 5000), PPM_OK);
+    return r;
+}
+
+static void run_passes(ppm_renderer r, int passes) {
+    for (int i = 0; i < passes; ++i) assert_int_equal(ppm_render_pass(r), PPM_OK);
+}
+
+static void assert_same_layer(ppm_renderer a, ppm_renderer b, const char *layer, size_t count) {
+    float *x = malloc(count * sizeof *x), *y = malloc(count * sizeof *y);
+    assert_int_equal(ppm_renderer_get_layer(a, layer, x, count), PPM_OK);
+    assert_int_equal(ppm_renderer_get_layer(b, layer, y, count), PPM_OK);
+    double sum = 0;
+    for (size_t i = 0; i < count; ++i) sum += x[i];
+    assert_true(sum > 0); /* a real image, not two black ones */
+    assert_memory_equal(x, y, count * sizeof *x);
+    free(x);
+    free(y);
+}
+
+static void check_resume_equals_uninterrupted(fixture *f, const char *mode) {
+    ppm_renderer whole = new_renderer(f, mode);
+    run_passes(whole, 5);
+
+    ppm_renderer first = new_renderer(f, mode);
+    run_passes(first, 2);
+    assert_int_equal(ppm_renderer_save_checkpoint(first, f->path), PPM_OK);
+    ppm_renderer_release(first);
+
+    ppm_renderer resumed = new_renderer(f, mode);
+    assert_int_equal(ppm_renderer_load_checkpoint(resumed, f->path), PPM_OK);
+    int64_t passes = 0, emitted = 0;
+    assert_int_equal(ppm_renderer_get_int(resumed, "passes", &passes), PPM_OK);
+    assert_int_equal(passes, 2);
+    assert_int_equal(ppm_renderer_get_int(resumed, "photons_emitted", &emitted), PPM_OK);
+    assert_int_equal(emitted, 10000);
+    run_passes(resumed, 3);
+
+    const size_t pixels = 64 * 48;
+    assert_same_layer(whole, resumed, "radiance", pixels * 3);
+    assert_same_layer(whole, resumed, "radius", pixels);
+    assert_same_layer(whole, resumed, "photons", pixels);
+    ppm_renderer_release(whole);
+    ppm_renderer_release(resumed);
+}
+
+static void test_resume_equals_uninterrupted_sppm(void **state) { check_resume_equals_uninterrupted(*state, "sppm"); }
+static void test_resume_equals_uninterrupted_ppm(void **state) { check_resume_equals_uninterrupted(*state, "ppm"); }
+
+static void test_checkpoint_before_any_pass(void **state) {
+    fixture *f = *state;
+    ppm_renderer r = new_renderer(f, "sppm");
+    assert_int_equal(ppm_renderer_save_checkpoint(r, f->path), PPM_OK);
+    ppm_renderer fresh = new_renderer(f, "sppm");
+    assert_int_equal(ppm_renderer_load_checkpoint(fresh, f->path), PPM_OK);
+    run_passes(fresh, 1);
+    run_passes(r, 1);
+    assert_same_layer(r, fresh, "radiance", 64 * 48 * 3);
+    ppm_renderer_release(r);
+    ppm_renderer_release(fresh);
+}
+
+static long file_size(const char *path) {
+    FILE *file = fopen(path, "rb");
+    assert_non_null(file);
+    fseek(file, 0, SEEK_END);
+    const long size = ftell(file);
+    fclose(file);
+    return size;
+}
+
+static void rewrite_byte(const char *path, long offset, int delta) {
+    FILE *file = fopen(path, "r+b");
+    assert_non_null(file);
+    fseek(file, offset, SEEK_SET);
+    const int byte = fgetc(file);
+    fseek(file, offset, SEEK_SET);
+    fputc((byte + delta) & 0xFF, file);
+    fclose(file);
+}
+
+static void expect_load_error(fixture *f, const char *path, ppm_status status, const char *fragment) {
+    ppm_renderer r = new_renderer(f, "sppm");
+    const ppm_status got = ppm_renderer_load_checkpoint(r, path);
+    if (got != status || !strstr(ppm_last_error_message(), fragment))
+        fail_msg("status %d (expected %d), message '%s' (expected '%s')", got, status, ppm_last_error_message(), fragment);
+    int64_t passes = -1;
+    assert_int_equal(ppm_renderer_get_int(r, "passes", &passes), PPM_OK);
+    assert_int_equal(passes, 0); /* a refused checkpoint changes nothing */
+    run_passes(r, 1);
+    ppm_renderer_release(r);
+}
+
+static void test_bad_checkpoints_are_refused(void **state) {
+    fixture *f = *state;
+    ppm_renderer r = new_renderer(f, "sppm");
+    run_passes(r, 1);
+    assert_int_equal(ppm_renderer_save_checkpoint(r, f->path), PPM_OK);
+    /* Loading is only for a fresh renderer. */
+    assert_int_equal(ppm_renderer_load_checkpoint(r, f->path), PPM_ERROR_INVALID_OPERATION);
+    ppm_renderer_release(r);
+
+    char other[160];
+    snprintf(other, sizeof other, "%s/other", f->folder);
+    expect_load_error(f, "/nonexistent/render.ppmckpt", PPM_ERROR_IO, "/nonexistent/render.ppmckpt");
+    expect_load_error(f, small_box, PPM_ERROR_PARSE, "not a libppm checkpoint");
+
+    /* A flipped bit in the statistics fails the checksum; a cut file is truncated. */
+    char command[400];
+    const long size = file_size(f->path);
+    snprintf(command, sizeof command, "cp '%s' '%s'", f->path, other);
+    assert_int_equal(system(command), 0);
+    rewrite_byte(other, size / 2, 1);
+    expect_load_error(f, other, PPM_ERROR_PARSE, "corrupt");
+    assert_int_equal(truncate(other, size - 100), 0);
+    expect_load_error(f, other, PPM_ERROR_PARSE, "checkpoint");
+    assert_int_equal(truncate(other, 10), 0);
+    expect_load_error(f, other, PPM_ERROR_PARSE, "truncated");
+    /* Another version. */
+    snprintf(command, sizeof command, "cp '%s' '%s'", f->path, other);
+    assert_int_equal(system(command), 0);
+    rewrite_byte(other, 8, 1);
+    expect_load_error(f, other, PPM_ERROR_PARSE, "version 2");
+
+    /* The checkpoint of another render: settings and camera are named. */
+    ppm_renderer seeded = new_renderer(f, "sppm");
+    assert_int_equal(ppm_renderer_set_int(seeded, "seed", 99), PPM_OK);
+    assert_int_equal(ppm_renderer_load_checkpoint(seeded, f->path), PPM_ERROR_INVALID_ARGUMENT);
+    assert_non_null(strstr(ppm_last_error_message(), "seed is 7, this renderer's is 99"));
+    ppm_renderer_release(seeded);
+    ppm_renderer ppm_mode = new_renderer(f, "ppm");
+    assert_int_equal(ppm_renderer_load_checkpoint(ppm_mode, f->path), PPM_ERROR_INVALID_ARGUMENT);
+    assert_non_null(strstr(ppm_last_error_message(), "mode is sppm"));
+    ppm_renderer_release(ppm_mode);
+
+    ppm_scene scene = NULL;
+    assert_int_equal(ppm_scene_file_get_scene(f->file, &scene), PPM_OK);
+    ppm_camera camera;
+    assert_int_equal(ppm_scene_file_get_camera(f->file, &camera), PPM_OK);
+    camera.fov += 1;
+    ppm_renderer moved = NULL;
+    assert_int_equal(ppm_renderer_create(scene, &camera, &moved), PPM_OK);
+    assert_int_equal(ppm_renderer_set_int(moved, "seed", 7), PPM_OK);
+    assert_int_equal(ppm_renderer_load_checkpoint(moved, f->path), PPM_ERROR_INVALID_ARGUMENT);
+    assert_non_null(strstr(ppm_last_error_message(), "camera differs"));
+    ppm_renderer_release(moved);
+    ppm_scene_release(scene);
+
+    /* Unwritable target: an IO error, and no temporary file left behind. */
+    ppm_renderer w = new_renderer(f, "sppm");
+    assert_int_equal(ppm_renderer_save_checkpoint(w, "/nonexistent/dir/x.ppmckpt"), PPM_ERROR_IO);
+    assert_int_equal(ppm_renderer_save_checkpoint(w, NULL), PPM_ERROR_INVALID_ARGUMENT);
+    assert_int_equal(ppm_renderer_save_checkpoint(NULL, f->path), PPM_ERROR_INVALID_ARGUMENT);
+    ppm_renderer_release(w);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup_teardown(test_resume_equals_uninterrupted_sppm, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_resume_equals_uninterrupted_ppm, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_checkpoint_before_any_pass, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_bad_checkpoints_are_refused, setup, teardown),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,275 @@
+/* Scene files (docs/scene-format.md) through the C API: what a valid file builds, and a clear
+ * located error for each kind of bad input. */
+#include <ppm/ppm.h>
+
+#include "test_support.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static const char *const small_box = PPM_TEST_DATA_DIR "/scenes/small_box.json";
+
+typedef struct fixture {
+    ppm_context context;
+    char folder[64];
+    char path[128];
+} fixture;
+
+static int setup(void **state) {
+    fixture *f = calloc(1, sizeof *f);
+    assert_non_null(f);
+    assert_int_equal(ppm_context_create(&f->context), PPM_OK);
+    strcpy(f->folder, "/tmp/ppm-scene-test-XXXXXX");
+    assert_non_null(mkdtemp(f->folder));
+    snprintf(f->path, sizeof f->path, "%s/scene.json", f->folder);
+    *state = f;
+    return 0;
+}
+
+static int teardown(void **state) {
+    fixture *f = *state;
+    char command[160];
+    snprintf(command, sizeof command, "rm -rf '%s'", f->folder);
+    assert_int_equal(system(command), 0);
+    ppm_context_release(f->context);
+    free(f);
+    return 0;
+}
+
+static void write_text(const char *path, const char *text) {
+    FILE *file = fopen(path, "w");
+    assert_non_null(file);
+    fputs(text, file);
+    fclose(file);
+}
+
+/* Loads `text` as <folder>/scene.json and expects `status` with every fragment (NULL-ended)
+ * in the message. */
+static void expect_error(fixture *f, const char *text, ppm_status status, const char *const *fragments) {
+    write_text(f->path, text);
+    ppm_scene_file file = NULL;
+    const ppm_status got = ppm_scene_file_load(f->context, f->path, &file);
+    const char *message = ppm_last_error_message();
+    if (got != status) fail_msg("status %d, expected %d, for\n%s\nmessage: %s", got, status, text, message);
+    assert_null(file);
+    for (; *fragments; ++fragments)
+        if (!strstr(message, *fragments)) fail_msg("message '%s' lacks '%s'", message, *fragments);
+}
+
+#define EXPECT_ERROR(f, text, status, ...)                            \
+    do {                                                              \
+        const char *const fragments_[] = {__VA_ARGS__, NULL};         \
+        expect_error((f), (text), (status), fragments_);              \
+    } while (0)
+
+static void test_small_box_builds_what_it_says(void **state) {
+    fixture *f = *state;
+    ppm_scene_file file = NULL;
+    assert_int_equal(ppm_scene_file_load(f->context, small_box, &file), PPM_OK);
+
+    ppm_camera camera;
+    assert_int_equal(ppm_scene_file_get_camera(file, &camera), PPM_OK);
+    assert_int_equal(camera.width, 64);
+    assert_int_equal(camera.height, 48);
+    assert_close(camera.fov, 45, 0);
+    assert_close(camera.near_clip, 0.01, 0); /* Mitsuba's default */
+    assert_close(camera.aperture_radius, 0, 0);
+    /* look_at: origin, a point along the view direction, an up vector. */
+    assert_close(camera.origin[1], 1, 1e-12);
+    assert_close(camera.origin[2], 3.5, 1e-12);
+    assert_close(camera.target[2], 2.5, 1e-12); /* one unit towards the target */
+    assert_close(camera.up[1], 1, 1e-12);
+
+    int64_t passes = 0;
+    double time = -1;
+    assert_int_equal(ppm_scene_file_get_int(file, "passes", &passes), PPM_OK);
+    assert_int_equal(passes, 4);
+    assert_int_equal(ppm_scene_file_get_double(file, "time", &time), PPM_OK);
+    assert_close(time, 0, 0);
+    assert_int_equal(ppm_scene_file_get_int(file, "nonsense", &passes), PPM_ERROR_INVALID_ARGUMENT);
+
+    ppm_scene scene = NULL;
+    assert_int_equal(ppm_scene_file_get_scene(file, &scene), PPM_OK);
+    /* Floor [-1,1]^2 at y = 0 rotated from z = 0, back wall at z = -1, light at y = 1.99. */
+    double lower[3], upper[3];
+    assert_int_equal(ppm_scene_get_bounds(scene, lower, upper), PPM_OK);
+    assert_close(lower[0], -1, 1e-9);
+    assert_close(upper[0], 1, 1e-9);
+    assert_close(lower[1], 0, 1e-9);
+    assert_close(upper[1], 2, 1e-9);
+    assert_close(lower[2], -1, 1e-9);
+    assert_close(upper[2], 1, 1e-9);
+
+    /* A ray down the middle hits the floor's rectangle at y = 0 from above. */
+    ppm_ray ray = {{0.0, 1.5, 0.6}, 0, {0, -1, 0}, INFINITY};
+    ppm_hit hit;
+    assert_int_equal(ppm_scene_intersect(scene, &ray, 1, &hit), PPM_OK);
+    assert_close(hit.t, 1.5, 1e-9);
+    /* The emitter, scaled to 0.25 and flipped to face down, covers x in [-0.25, 0.25]. */
+    ppm_ray up_ray = {{0.2, 1.0, 0.0}, 0, {0, 1, 0}, INFINITY};
+    assert_int_equal(ppm_scene_intersect(scene, &up_ray, 1, &hit), PPM_OK);
+    assert_close(hit.t, 0.99, 1e-9);
+
+    ppm_renderer renderer = NULL;
+    assert_int_equal(ppm_scene_file_create_renderer(file, &renderer), PPM_OK);
+    int64_t value = 0;
+    assert_int_equal(ppm_renderer_get_int(renderer, "photons_per_pass", &value), PPM_OK);
+    assert_int_equal(value, 20000);
+    assert_int_equal(ppm_renderer_get_int(renderer, "seed", &value), PPM_OK);
+    assert_int_equal(value, 7);
+    assert_int_equal(ppm_render_pass(renderer), PPM_OK);
+
+    /* The scene and renderer outlive the file handle. */
+    ppm_scene_file_release(file);
+    assert_int_equal(ppm_render_pass(renderer), PPM_OK);
+    ppm_renderer_release(renderer);
+    ppm_scene_release(scene);
+}
+
+static void test_defaults_and_inline_patches(void **state) {
+    fixture *f = *state;
+    /* A flat patch given inline, no sensor, no bsdfs: Mitsuba's camera defaults. */
+    write_text(f->path,
+               "{\"shapes\": [{\"type\": \"bezier\", \"patches\": [[\n"
+               "  [0,0,5],[1,0,5],[2,0,5],[3,0,5], [0,1,5],[1,1,5],[2,1,5],[3,1,5],\n"
+               "  [0,2,5],[1,2,5],[2,2,5],[3,2,5], [0,3,5],[1,3,5],[2,3,5],[3,3,5]]],\n"
+               "  \"to_world\": {\"translate\": [-1.5, -1.5, 0]}}]}\n");
+    ppm_scene_file file = NULL;
+    assert_int_equal(ppm_scene_file_load(f->context, f->path, &file), PPM_OK);
+    ppm_camera camera;
+    assert_int_equal(ppm_scene_file_get_camera(file, &camera), PPM_OK);
+    assert_int_equal(camera.width, 768);
+    assert_int_equal(camera.height, 576);
+    assert_close(camera.fov, 39.597752709049864, 1e-12);
+    assert_close(camera.target[2], 1, 0);
+    ppm_scene scene = NULL;
+    assert_int_equal(ppm_scene_file_get_scene(file, &scene), PPM_OK);
+    ppm_ray ray = {{0, 0, 0}, 0, {0, 0, 1}, INFINITY};
+    ppm_hit hit;
+    assert_int_equal(ppm_scene_intersect(scene, &ray, 1, &hit), PPM_OK);
+    assert_close(hit.t, 5, 1e-9);
+    ppm_scene_release(scene);
+    ppm_scene_file_release(file);
+}
+
+static void test_errors_are_located(void **state) {
+    fixture *f = *state;
+    /* JSON syntax: line and column of the problem. */
+    EXPECT_ERROR(f, "{\n  \"shapes\": [\n    {\"type\": \"sphere\",}\n  ]\n}\n", PPM_ERROR_PARSE, "scene.json:3:");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"sphere\", \"radius\": NaN}]}", PPM_ERROR_PARSE, "scene.json:1:");
+    EXPECT_ERROR(f, "{\"shapes\": [], \"shapes\": []}", PPM_ERROR_PARSE, "scene.json:1:", "uplicate");
+    EXPECT_ERROR(f, "[1, 2]", PPM_ERROR_PARSE, "must be a JSON object");
+    EXPECT_ERROR(f, "", PPM_ERROR_PARSE, "scene.json");
+    /* Unknown keys anywhere. */
+    EXPECT_ERROR(f, "{\"shapez\": []}", PPM_ERROR_PARSE, "scene.json:1:", "shapez: unknown key");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"sphere\", \"radiuss\": 1}]}", PPM_ERROR_PARSE,
+                 "shapes[0].radiuss: unknown key");
+    /* Wrong types and ranges, with the key path and the expectation. */
+    EXPECT_ERROR(f, "{\"sensor\": {\"fov\": \"wide\"}, \"shapes\": [{\"type\": \"sphere\"}]}", PPM_ERROR_PARSE,
+                 "scene.json:1:20: sensor.fov: expected a number in (0, 180)");
+    EXPECT_ERROR(f,
+                 "{\"bsdfs\": {\"glass\": {\"type\": \"dielectric\",\n"
+                 "                     \"int_ior\": -1}},\n \"shapes\": [{\"type\": \"sphere\"}]}",
+                 PPM_ERROR_PARSE, "scene.json:2:33: bsdfs.glass.int_ior: expected a number > 0");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"sphere\", \"radius\": -2}]}", PPM_ERROR_PARSE,
+                 "shapes[0].radius: expected a number > 0");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"sphere\", \"radius\": 1e999}]}", PPM_ERROR_PARSE, "scene.json:1:");
+    EXPECT_ERROR(f, "{\"integrator\": {\"passes\": 1.5}, \"shapes\": [{\"type\": \"sphere\"}]}", PPM_ERROR_PARSE,
+                 "integrator.passes: expected a whole number");
+    EXPECT_ERROR(f, "{\"integrator\": {\"alpha\": 2}, \"shapes\": [{\"type\": \"sphere\"}]}", PPM_ERROR_PARSE,
+                 "integrator.alpha: alpha must be in (0, 1]");
+    EXPECT_ERROR(f, "{\"integrator\": {\"type\": \"bdpt\"}, \"shapes\": [{\"type\": \"sphere\"}]}", PPM_ERROR_PARSE,
+                 "integrator.type: 'bdpt' is not known");
+    EXPECT_ERROR(f, "{\"sensor\": {\"film\": {\"width\": 100000, \"height\": 100000}}, \"shapes\": [{\"type\": \"sphere\"}]}",
+                 PPM_ERROR_PARSE, "sensor.film: width x height = 10000000000 pixels exceeds the limit");
+    EXPECT_ERROR(f, "{\"sensor\": {\"film\": {\"width\": 0}}, \"shapes\": [{\"type\": \"sphere\"}]}", PPM_ERROR_PARSE,
+                 "sensor.film.width: expected a whole number in [1, ");
+    EXPECT_ERROR(f, "{\"sensor\": {\"type\": \"thinlens\"}, \"shapes\": [{\"type\": \"sphere\"}]}", PPM_ERROR_PARSE,
+                 "sensor: missing key 'aperture_radius'");
+    EXPECT_ERROR(f,
+                 "{\"bsdfs\": {\"hot\": {\"type\": \"diffuse\", \"reflectance\": [1, 2, 0]}}, \"shapes\": [{\"type\": "
+                 "\"sphere\"}]}",
+                 PPM_ERROR_PARSE, "bsdfs.hot.reflectance: a reflectance must lie in [0, 1]");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"sphere\", \"bsdf\": \"gold\"}]}", PPM_ERROR_PARSE,
+                 "shapes[0].bsdf: no bsdf named 'gold'");
+    EXPECT_ERROR(f, "{\"shapes\": []}", PPM_ERROR_PARSE, "shapes: a scene needs at least one shape");
+    EXPECT_ERROR(f, "{}", PPM_ERROR_PARSE, "missing key 'shapes'");
+    EXPECT_ERROR(f, "{\"version\": 2, \"shapes\": [{\"type\": \"sphere\"}]}", PPM_ERROR_PARSE,
+                 "version: expected a whole number in [1, 1]");
+    /* Transforms. */
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"rectangle\", \"to_world\": {\"scale\": 0}}]}", PPM_ERROR_PARSE,
+                 "shapes[0].to_world.scale: a scale must not be zero");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"rectangle\", \"to_world\": {\"scale\": 2, \"translate\": [1,0,0]}}]}",
+                 PPM_ERROR_PARSE, "shapes[0].to_world: a transform operation has exactly one key");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"rectangle\", \"to_world\": [{\"shear\": 1}]}]}", PPM_ERROR_PARSE,
+                 "shapes[0].to_world[0].shear: unknown key");
+    EXPECT_ERROR(f,
+                 "{\"shapes\": [{\"type\": \"sphere\", \"to_world\": {\"scale\": [1, 2, 1]}}]}",
+                 PPM_ERROR_INVALID_ARGUMENT, "shapes[0].to_world: ");
+    /* Degenerate geometry reported by the API, located in the file. */
+    EXPECT_ERROR(f,
+                 "{\"shapes\": [{\"type\": \"quad\", \"origin\": [0,0,0], \"edge_u\": [1,0,0], \"edge_v\": [2,0,0]}]}",
+                 PPM_ERROR_INVALID_ARGUMENT, "scene.json:1:13: shapes[0]: ");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"bezier\", \"patches\": [[[0,0,0]]]}]}", PPM_ERROR_PARSE,
+                 "shapes[0].patches[0]: expected 16 control points");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"obj\", \"emitter\": {\"type\": \"area\"}, \"filename\": \"x.obj\"}]}",
+                 PPM_ERROR_IO, "shapes[0].filename: file not found: ");
+}
+
+static void test_missing_and_malformed_files(void **state) {
+    fixture *f = *state;
+    ppm_scene_file file = NULL;
+    assert_int_equal(ppm_scene_file_load(f->context, "/nonexistent/scene.json", &file), PPM_ERROR_IO);
+    assert_non_null(strstr(ppm_last_error_message(), "/nonexistent/scene.json"));
+    assert_int_equal(ppm_scene_file_load(f->context, f->folder, &file), PPM_ERROR_IO); /* a directory */
+
+    /* Files named inside are relative to the scene's folder; their own errors keep both places. */
+    char bpt[160];
+    snprintf(bpt, sizeof bpt, "%s/bad.bpt", f->folder);
+    write_text(bpt, "1\n3 3\n0 0 0\n");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"bezier\", \"filename\": \"bad.bpt\"}]}", PPM_ERROR_PARSE,
+                 "shapes[0].filename: ", "bad.bpt");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"bezier\", \"filename\": \"missing.bpt\"}]}", PPM_ERROR_IO,
+                 "file not found", "missing.bpt");
+    EXPECT_ERROR(f,
+                 "{\"bsdfs\": {\"tex\": {\"type\": \"diffuse\", \"reflectance\": {\"type\": \"bitmap\", \"filename\": "
+                 "\"bad.bpt\"}}}, \"shapes\": [{\"type\": \"sphere\", \"bsdf\": \"tex\"}]}",
+                 PPM_ERROR_IO, "bsdfs.tex.reflectance: ");
+
+    assert_int_equal(ppm_scene_file_load(NULL, small_box, &file), PPM_ERROR_INVALID_ARGUMENT);
+    assert_int_equal(ppm_scene_file_load(f->context, NULL, &file), PPM_ERROR_INVALID_ARGUMENT);
+    assert_int_equal(ppm_scene_file_load(f->context, small_box, NULL), PPM_ERROR_INVALID_ARGUMENT);
+    assert_int_equal(ppm_scene_file_get_scene(NULL, NULL), PPM_ERROR_INVALID_ARGUMENT);
+    ppm_scene_file_release(NULL);
+}
+
+/* Every example scene under examples/scenes loads (the textures are generated by the build). */
+static void test_examples_load(void **state) {
+    fixture *f = *state;
+    static const char *const examples[] = {"teapot-cornell.json", "smallppm.json", "caustics.json", "showcase.json"};
+    for (size_t i = 0; i < sizeof examples / sizeof *examples; ++i) {
+        char path[512];
+        snprintf(path, sizeof path, "%s/%s", PPM_EXAMPLE_SCENES_DIR, examples[i]);
+        if (access(path, R_OK) != 0) fail_msg("example scene %s is missing", path);
+        ppm_scene_file file = NULL;
+        if (ppm_scene_file_load(f->context, path, &file) != PPM_OK) fail_msg("%s", ppm_last_error_message());
+        ppm_renderer renderer = NULL;
+        assert_int_equal(ppm_scene_file_create_renderer(file, &renderer), PPM_OK);
+        ppm_renderer_release(renderer);
+        ppm_scene_file_release(file);
+    }
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup_teardown(test_small_box_builds_what_it_says, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_defaults_and_inline_patches, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_errors_are_located, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_missing_and_malformed_files, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_examples_load, setup, teardown),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

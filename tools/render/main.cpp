@@ -1,0 +1,275 @@
+// ppm-render: renders a scene file by progressive photon mapping through libppm's public API,
+// rewriting the image atomically as it converges, with checkpoints to stop and resume.
+#include <ppm/ppm.h>
+
+#include "image_writer.h"
+#include "options.h"
+#include "progress.h"
+#include "signals.h"
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <cstdlib>
+#include <mutex>
+#include <string>
+#include <thread>
+
+using namespace ppm_render;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// A failed libppm call: exit status 2 for bad input (the scene, a setting, a checkpoint),
+// 1 for failures at run time.
+struct ApiError {
+    int exit_status;
+    std::string message;
+};
+
+void check(ppm_status status, int exit_status, const std::string &what = "") {
+    if (status != PPM_OK) throw ApiError{exit_status, (what.empty() ? "" : what + ": ") + ppm_last_error_message()};
+}
+
+// --set KEY=VALUE: numbers through set_double (which takes integer keys with whole values),
+// anything else as a string; the library checks keys and ranges.
+void apply_setting(ppm_renderer renderer, const std::string &key, const std::string &value) {
+    char *end = nullptr;
+    const double number = std::strtod(value.c_str(), &end);
+    const bool numeric = end != value.c_str() && *end == '\0';
+    if (numeric)
+        check(ppm_renderer_set_double(renderer, key.c_str(), number), 2, "--set " + key + "=" + value);
+    else
+        check(ppm_renderer_set_string(renderer, key.c_str(), value.c_str()), 2, "--set " + key + "=" + value);
+}
+
+Image read_image(ppm_renderer renderer, const Options &options) {
+    int64_t width = 0, height = 0;
+    check(ppm_renderer_get_int(renderer, "width", &width), 1);
+    check(ppm_renderer_get_int(renderer, "height", &height), 1);
+    Image image;
+    image.width = static_cast<int>(width);
+    image.height = static_cast<int>(height);
+    const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    image.radiance.resize(pixels * 3);
+    check(ppm_renderer_get_layer(renderer, "radiance", image.radiance.data(), image.radiance.size()), 1);
+    for (const std::string &name : options.layers) {
+        Layer layer{name, std::vector<float>(pixels)};
+        check(ppm_renderer_get_layer(renderer, name.c_str(), layer.data.data(), layer.data.size()), 1);
+        image.layers.push_back(std::move(layer));
+    }
+    return image;
+}
+
+void write_images(ppm_renderer renderer, const Options &options) {
+    const Image image = read_image(renderer, options);
+    for (const std::string &path : options.outputs) write_image_atomically(path, image, options.exposure);
+}
+
+std::string joined_outputs(const Options &options) {
+    std::string text;
+    for (const std::string &path : options.outputs) text += (text.empty() ? "" : ", ") + path;
+    return text;
+}
+
+// Cancels the renderer when the time budget runs out, unless stopped first.
+class Deadline {
+public:
+    Deadline(ppm_renderer renderer, double seconds) {
+        if (seconds <= 0) return;
+        thread_ = std::thread([this, renderer, seconds] {
+            std::unique_lock<std::mutex> lock(mutex_);
+            if (!wake_.wait_for(lock, std::chrono::duration<double>(seconds), [this] { return stop_; })) {
+                expired_ = true;
+                ppm_renderer_cancel(renderer);
+            }
+        });
+    }
+    ~Deadline() {
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            stop_ = true;
+        }
+        wake_.notify_all();
+        if (thread_.joinable()) thread_.join();
+    }
+    bool expired() {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return expired_;
+    }
+
+private:
+    std::mutex mutex_;
+    std::condition_variable wake_;
+    bool stop_ = false, expired_ = false;
+    std::thread thread_;
+};
+
+int render(const Options &options, SignalWatcher &signals) {
+    ppm_context context = nullptr;
+    ppm_scene_file file = nullptr;
+    ppm_renderer renderer = nullptr;
+    struct Release {
+        ppm_context &c;
+        ppm_scene_file &f;
+        ppm_renderer &r;
+        ~Release() {
+            ppm_renderer_release(r);
+            ppm_scene_file_release(f);
+            ppm_context_release(c);
+        }
+    } release{context, file, renderer};
+
+    check(ppm_context_create(&context), 1, "creating the context");
+    if (options.threads > 0) check(ppm_context_set_int(context, "threads", options.threads), 2, "--threads");
+    check(ppm_scene_file_load(context, options.scene.c_str(), &file), 2);
+    check(ppm_scene_file_create_renderer(file, &renderer), 2, options.scene);
+    if (options.photons > 0) check(ppm_renderer_set_int(renderer, "photons_per_pass", options.photons), 2, "--photons");
+    if (options.seed >= 0) check(ppm_renderer_set_int(renderer, "seed", options.seed), 2, "--seed");
+    for (const auto &[key, value] : options.settings) apply_setting(renderer, key, value);
+
+    int64_t file_passes = 0;
+    double file_time = 0;
+    check(ppm_scene_file_get_int(file, "passes", &file_passes), 1);
+    check(ppm_scene_file_get_double(file, "time", &file_time), 1);
+    const double budget = options.time >= 0 ? options.time : file_time;
+    const uint64_t target = options.passes > 0 ? static_cast<uint64_t>(options.passes)
+                            : file_passes > 0   ? static_cast<uint64_t>(file_passes)
+                            : budget > 0        ? 0 // until the time is up
+                                                : 16;
+
+    if (!options.resume.empty()) check(ppm_renderer_load_checkpoint(renderer, options.resume.c_str()), 2, "--resume");
+    int64_t passes = 0, width = 0, height = 0, photons_per_pass = 0, threads = 0;
+    check(ppm_renderer_get_int(renderer, "passes", &passes), 1);
+    check(ppm_renderer_get_int(renderer, "width", &width), 1);
+    check(ppm_renderer_get_int(renderer, "height", &height), 1);
+    check(ppm_renderer_get_int(renderer, "photons_per_pass", &photons_per_pass), 1);
+    check(ppm_context_get_int(context, "threads", &threads), 1);
+    if (threads == 0) threads = std::thread::hardware_concurrency(); // 0: all of them
+    char mode[16] = "";
+    check(ppm_renderer_get_string(renderer, "mode", mode, sizeof mode, nullptr), 1);
+    if (!options.quiet) {
+        std::fprintf(stderr, "ppm-render: %s: %lld x %lld, %s, %lld photons/pass, ", options.scene.c_str(),
+                     static_cast<long long>(width), static_cast<long long>(height), mode,
+                     static_cast<long long>(photons_per_pass));
+        if (target > 0) std::fprintf(stderr, "%llu passes", static_cast<unsigned long long>(target));
+        else std::fprintf(stderr, "passes until %.1f s", budget);
+        if (passes > 0) std::fprintf(stderr, " (resuming after pass %lld)", static_cast<long long>(passes));
+        std::fprintf(stderr, ", %lld threads\n", static_cast<long long>(threads));
+    }
+
+    signals.start([renderer] { ppm_renderer_cancel(renderer); });
+    const Clock::time_point start = Clock::now();
+    Deadline deadline(renderer, budget);
+    ProgressBar progress(!options.quiet);
+    Clock::time_point last_write = start, last_checkpoint = start;
+    const int64_t first_pass = passes;
+    double last_pass_seconds = 0;
+    bool stopped_early = false;
+
+    while (target == 0 || static_cast<uint64_t>(passes) < target) {
+        // No pass starts that would, at the last pass's pace, end after the budget.
+        if (budget > 0 && passes > first_pass && seconds_since(start) + last_pass_seconds > budget) break;
+        const Clock::time_point pass_start = Clock::now();
+        const ppm_status status = ppm_render_pass(renderer);
+        if (status == PPM_ERROR_CANCELLED) {
+            stopped_early = true;
+            break;
+        }
+        if (status != PPM_OK) {
+            progress.finish();
+            const std::string message = ppm_last_error_message();
+            write_images(renderer, options);
+            throw ApiError{1, "pass " + std::to_string(passes + 1) + ": " + message};
+        }
+        last_pass_seconds = seconds_since(pass_start);
+        ++passes;
+
+        double photon_seconds = 0;
+        check(ppm_renderer_get_double(renderer, "last_photon_pass_seconds", &photon_seconds), 1);
+        const double elapsed = seconds_since(start);
+        const double per_pass = elapsed / static_cast<double>(passes - first_pass);
+        double eta = target > 0 ? per_pass * static_cast<double>(target - static_cast<uint64_t>(passes)) : -1;
+        if (budget > 0) eta = eta < 0 ? budget - elapsed : std::min(eta, budget - elapsed);
+        progress.update(static_cast<uint64_t>(passes), target,
+                        photon_seconds > 0 ? static_cast<double>(photons_per_pass) / photon_seconds : 0, elapsed, eta);
+
+        if (seconds_since(last_write) >= options.write_interval) {
+            write_images(renderer, options);
+            last_write = Clock::now();
+        }
+        if (options.checkpoint_interval > 0 && seconds_since(last_checkpoint) >= options.checkpoint_interval) {
+            check(ppm_renderer_save_checkpoint(renderer, options.checkpoint.c_str()), 1, "checkpoint");
+            last_checkpoint = Clock::now();
+        }
+    }
+    progress.finish();
+    const double elapsed = seconds_since(start);
+    write_images(renderer, options);
+
+    const bool interrupted = signals.interrupted();
+    const bool timed_out = stopped_early && !interrupted && deadline.expired();
+    if (interrupted || options.checkpoint_given)
+        check(ppm_renderer_save_checkpoint(renderer, options.checkpoint.c_str()), 1, "checkpoint");
+    if (!options.quiet) {
+        int64_t emitted = 0;
+        check(ppm_renderer_get_int(renderer, "photons_emitted", &emitted), 1);
+        const int64_t done = passes - first_pass;
+        std::fprintf(stderr, "ppm-render: %lld passes (%.1f M photons emitted in all) in %.1f s, %.3f s per pass -> %s\n",
+                     static_cast<long long>(passes), static_cast<double>(emitted) / 1e6, elapsed,
+                     done > 0 ? elapsed / static_cast<double>(done) : 0.0, joined_outputs(options).c_str());
+        if (interrupted)
+            std::fprintf(stderr, "ppm-render: interrupted (signal %d); checkpoint %s (continue with --resume %s)\n",
+                         signals.signal_number(), options.checkpoint.c_str(), options.checkpoint.c_str());
+        else if (timed_out)
+            std::fprintf(stderr, "ppm-render: time budget of %.1f s reached during a pass; that pass was abandoned\n",
+                         budget);
+        else if (options.checkpoint_given)
+            std::fprintf(stderr, "ppm-render: checkpoint %s\n", options.checkpoint.c_str());
+        if (passes == 0) std::fprintf(stderr, "ppm-render: warning: no pass completed; the image is black\n");
+    }
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+    Options options;
+    try {
+        options = parse_options(argc, argv);
+    } catch (const UsageError &e) {
+        std::fprintf(stderr, "ppm-render: %s\nTry 'ppm-render -h' for help.\n", e.what());
+        return 2;
+    }
+    if (options.help) {
+        std::fputs(usage_text, stdout);
+        return 0;
+    }
+    if (options.version) {
+        std::printf("ppm-render (libppm %s)\n", ppm_version_string());
+        return 0;
+    }
+    for (const std::string &path : options.outputs) {
+        try {
+            check_image_format(path);
+        } catch (const std::exception &e) {
+            std::fprintf(stderr, "ppm-render: %s\n", e.what());
+            return 2;
+        }
+    }
+    SignalWatcher signals; // before libppm creates threads: they inherit the blocked signals
+    try {
+        return render(options, signals);
+    } catch (const ApiError &e) {
+        std::fprintf(stderr, "ppm-render: %s\n", e.message.c_str());
+        return e.exit_status;
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "ppm-render: %s\n", e.what());
+        return 1;
+    }
+}
