@@ -165,8 +165,9 @@ def test_cancel_before_a_pass(plane):
 
 def test_cancel_from_another_thread_stops_a_running_pass(plane):
     """render_pass releases the GIL: the main thread cancels while the pass runs. A pass of
-    this size takes seconds; if the GIL were held, cancel() would only come after it."""
-    with ppm.Renderer(plane, camera(8), photons_per_pass=20_000_000) as r:
+    this size takes about a minute on 2 cores; if the GIL were held, cancel() would only
+    come after it."""
+    with ppm.Renderer(plane, camera(8), photons_per_pass=50_000_000) as r:
         errors = []
 
         def run():
@@ -183,7 +184,7 @@ def test_cancel_from_another_thread_stops_a_running_pass(plane):
         worker.join(timeout=60)
         assert not worker.is_alive()
         assert len(errors) == 1 and r.passes == 0
-        assert time.perf_counter() - start < 5
+        assert time.perf_counter() - start < 20  # generous: the machine may be busy
 
 
 def test_time_limit(plane):
