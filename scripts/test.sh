@@ -9,6 +9,8 @@
 # 3. Installs the Release build into a temporary prefix and checks the package: files, SONAME,
 #    exported symbols, and the examples/ consumer built against the installed library with
 #    find_package(ppm) and with pkg-config.
+# 4. Python: pip-installs bindings/python against that prefix into a temporary venv and runs
+#    its pytest tests (each test counts in the summary; a failed pip install counts as one).
 # Exits non-zero if anything failed; the last line sums up ctest tests and package checks.
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
@@ -215,5 +217,38 @@ if version=$(pkg-config --modversion ppm) && cflags=$(pkg-config --cflags ppm) &
 else
   fail "pkg-config does not find ppm.pc in the install prefix"
 fi
+
+# ---------------------------------------------------------------------------------------------
+ppm_step "Python bindings: pip install ./bindings/python against the install, pytest"
+# Debian's interpreter, not whichever python3 comes first in PATH (e.g. pyenv's): the venv sees
+# Debian's numpy, pytest and matplotlib through --system-site-packages.
+python_started=$SECONDS
+python=${PPM_PYTHON:-/usr/bin/python3}
+venv="$work/venv"
+# The build requirements from PyPI once, then the package built without isolation against
+# the installed libppm (found through CMAKE_PREFIX_PATH, loaded through an rpath).
+if "$python" -m venv --system-site-packages "$venv" &&
+  "$venv/bin/pip" install -q "scikit-build-core>=0.10" "nanobind>=2.0" &&
+  CMAKE_PREFIX_PATH="$prefix" CMAKE_BUILD_PARALLEL_LEVEL="$PPM_JOBS" \
+    "$venv/bin/pip" install --no-build-isolation ./bindings/python >"$work/pip.log" 2>&1; then
+  # From the repository root, so that bindings/python/ppm does not shadow the installed package.
+  "$venv/bin/python" -m pytest -p no:cacheprovider -q -rs bindings/python/tests 2>&1 |
+    tee "$work/pytest.log"
+  # "3 failed, 48 passed, 5 skipped in 4.12s"
+  line=$(grep -E '^[0-9]+ [a-z]+.* in [0-9.]+s' "$work/pytest.log" | tail -n 1)
+  count() { grep -oE "[0-9]+ $1" <<<"$line" | grep -oE '^[0-9]+' || echo 0; }
+  if [[ -z "$line" ]]; then
+    fail "python: pytest did not finish"
+  else
+    py_failed=$(($(count failed) + $(count 'errors?')))
+    passed=$((passed + $(count passed)))
+    failed=$((failed + py_failed))
+    ((py_failed == 0)) || failures+=("python: $py_failed pytest tests failed")
+  fi
+else
+  tail -n 40 "$work/pip.log" 2>/dev/null
+  fail "python: venv or pip install ./bindings/python"
+fi
+echo "python step: $((SECONDS - python_started)) s"
 
 finish

@@ -1,0 +1,42 @@
+"""libppm for Python: exact ray tracing of bicubic Bezier patches and progressive photon
+mapping, over the C API of ``<ppm/ppm.h>``.
+
+Objects (:class:`Context`, :class:`Scene`, :class:`Renderer`, :class:`SceneFile`) own a
+libppm handle: ``close()`` or a ``with`` block releases it, and a child keeps its parents
+alive. Arrays are numpy; failures raise :class:`Error` subclasses carrying libppm's message.
+"""
+from ._errors import (CancelledError, ClosedError, Error, FileError, InternalError,
+                      InvalidArgumentError, InvalidOperationError, OutOfMemoryError, ParseError,
+                      Status, UnsupportedError)
+from . import _core
+from ._rays import HIT_DTYPE, RAY_DTYPE, Hits
+from .camera import Camera
+from .context import Context, default_context
+from .renderer import Renderer
+from .scene import Scene
+from .scene_file import SceneFile, load
+from .tessellate import Mesh, tessellate
+
+__version__ = "0.1.0"
+
+#: geom_id (and prim_id) of a miss: 0xFFFFFFFF.
+INVALID_ID = _core.INVALID_ID
+
+#: Whether the libppm this module was built against implements scene files
+#: (:func:`load`) and checkpoints (:meth:`Renderer.save_checkpoint`).
+_has_scene_files = _core.has_scene_files
+_has_checkpoints = _core.has_checkpoints
+
+
+def version():
+    """Version string of the libppm actually loaded, "major.minor.patch"."""
+    return _core.version_string()
+
+
+__all__ = [
+    "CancelledError", "ClosedError", "Error", "FileError", "InternalError",
+    "InvalidArgumentError", "InvalidOperationError", "OutOfMemoryError", "ParseError", "Status",
+    "UnsupportedError", "HIT_DTYPE", "RAY_DTYPE", "Hits", "Camera", "Context",
+    "default_context", "Renderer", "Scene", "SceneFile", "load", "Mesh", "tessellate",
+    "INVALID_ID", "version",
+]

@@ -1,0 +1,32 @@
+"""What every handle class shares: close(), the context manager, the closed check."""
+
+
+class Handle:
+    """Base of the classes that own a libppm handle.
+
+    ``close()`` drops this object's reference at once (also done when it is garbage
+    collected); calling a method afterwards raises :class:`ppm.ClosedError`. Children keep
+    what they need alive: a renderer works on after its scene and context are closed.
+    """
+
+    _core_object = None
+
+    def close(self):
+        """Releases the handle; further calls raise :class:`ppm.ClosedError`. Idempotent."""
+        if self._core_object is not None:
+            self._core_object.close()
+
+    @property
+    def closed(self):
+        """True after :meth:`close`."""
+        return self._core_object is None or self._core_object.closed
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc_info):
+        self.close()
+
+    def __repr__(self):
+        state = "closed" if self.closed else "open"
+        return f"<ppm.{type(self).__name__} ({state})>"

@@ -1,0 +1,57 @@
+"""The root object: worker threads, Embree device."""
+from . import _core
+from ._handle import Handle
+
+_default = None
+
+
+class Context(Handle):
+    """A libppm context: owns the Embree device and the worker threads.
+
+    Optional: scenes created without one share :func:`default_context`.
+
+    >>> ctx = ppm.Context(threads=2)
+    >>> scene = ppm.Scene(ctx)
+
+    ``threads``: worker threads for batch queries, scene builds and rendering; 0 (default)
+    means all hardware threads.
+    """
+
+    def __init__(self, threads=None):
+        self._core_object = _core.Context()
+        if threads is not None:
+            self.threads = threads
+
+    @property
+    def threads(self):
+        """Worker threads (0 = all hardware threads); applies to calls that start later."""
+        return self._core_object.get_int("threads")
+
+    @threads.setter
+    def threads(self, value):
+        self._core_object.set_int("threads", int(value))
+
+    def set(self, key, value):
+        """Sets an integer setting of ``ppm_context_set_int`` by name."""
+        self._core_object.set_int(key, int(value))
+
+    def get(self, key):
+        """An integer setting by name."""
+        return self._core_object.get_int(key)
+
+
+def default_context():
+    """The context shared by scenes created without one (made on first use)."""
+    global _default
+    if _default is None or _default.closed:
+        _default = Context()
+    return _default
+
+
+def resolve(context):
+    """`context` if given, else the default one."""
+    if context is None:
+        return default_context()
+    if not isinstance(context, Context):
+        raise TypeError(f"context: expected ppm.Context, got {type(context).__name__}")
+    return context

@@ -1,0 +1,192 @@
+"""Progressive photon mapping (``ppm_renderer_*``)."""
+import dataclasses
+import numbers
+import os
+import time
+
+import numpy as np
+
+from . import _core
+from ._errors import CancelledError, Error, InvalidArgumentError
+from ._handle import Handle
+from .camera import Camera
+
+_LAYER_CHANNELS = {"radiance": 3, "radius": 1, "photons": 1}
+_CAMERA_FIELDS = {f.name for f in dataclasses.fields(Camera)}
+
+
+class Renderer(Handle):
+    """A progressive photon-mapping renderer of a committed scene seen through a camera.
+
+    >>> r = ppm.Renderer(scene, ppm.Camera(origin=(0, -5, 1), target=(0, 0, 1),
+    ...                  up=(0, 0, 1), fov=40, width=320, height=240), photons_per_pass=100000)
+    >>> rgb = r.render(16)                 # (240, 320, 3) float32, linear radiance
+
+    The camera may also be given as keyword arguments (the fields of :class:`Camera`),
+    alone or overriding fields of ``camera``:
+    ``ppm.Renderer(scene, origin=(0, -5, 1), target=(0, 0, 1), up=(0, 0, 1), width=64,
+    height=48, seed=3)``.
+
+    Settings (keyword arguments here, or :meth:`set` / :meth:`get`; see ppm.h):
+    ``mode`` ("sppm" | "ppm"), ``photons_per_pass``, ``alpha``, ``initial_radius``,
+    ``initial_radius_pixels``, ``max_depth``, ``seed``, ``hit_point_search``
+    ("kdtree" | "grid"), ``direct_lighting`` (1: shadow rays, 0: photons only). mode, seed,
+    direct_lighting and the initial radius are fixed after the first pass.
+
+    The scene's lights, materials and textures are read at creation; later scene changes
+    do not reach the renderer. It keeps the scene alive (``renderer.scene``).
+    """
+
+    def __init__(self, scene, camera=None, **settings):
+        camera_fields = {k: settings.pop(k) for k in list(settings) if k in _CAMERA_FIELDS}
+        if camera is None:
+            camera = Camera(**camera_fields)
+        elif not isinstance(camera, Camera):
+            raise TypeError(f"camera: expected ppm.Camera, got {type(camera).__name__}")
+        elif camera_fields:
+            camera = dataclasses.replace(camera, **camera_fields)
+        self.scene = scene
+        self.camera = camera
+        self._core_object = _core.Renderer(scene._core_object, camera._as_tuple())
+        self.set(**settings)
+
+    @classmethod
+    def _adopt(cls, core_renderer, scene, camera):
+        renderer = cls.__new__(cls)
+        renderer.scene = scene
+        renderer.camera = camera
+        renderer._core_object = core_renderer
+        return renderer
+
+    # -- settings -------------------------------------------------------------------------
+    def set(self, key=None, value=None, **settings):
+        """Sets settings: ``set("alpha", 0.7)`` or ``set(alpha=0.7, seed=3)``.
+
+        Python str, int (and bool) and float values go to the string, integer and double
+        setters of the C API; whole floats are accepted for integer settings.
+        """
+        if key is not None:
+            settings = {key: value, **settings}
+        for name, v in settings.items():
+            if isinstance(v, str):
+                self._core_object.set_string(name, v)
+            elif isinstance(v, numbers.Integral):
+                self._core_object.set_int(name, int(v))
+            elif isinstance(v, numbers.Real):
+                self._core_object.set_double(name, float(v))
+            else:
+                raise TypeError(f"render setting {name!r}: expected str, int or float, "
+                                f"got {type(v).__name__}")
+
+    def get(self, key):
+        """A setting or read-only value by name (int, float or str, as the C API has it):
+        the settings above and ``passes``, ``photons_emitted``, ``width``, ``height``,
+        ``last_eye_pass_seconds``, ``last_photon_pass_seconds``."""
+        # The C API has one getter per type and no "type of key" query: try each in turn.
+        getters = (self._core_object.get_int, self._core_object.get_double,
+                   self._core_object.get_string)
+        for getter in getters:
+            try:
+                return getter(key)
+            except InvalidArgumentError as e:
+                last = e
+        raise InvalidArgumentError(f"unknown render setting {key!r} ({last.message})")
+
+    @property
+    def passes(self):
+        """Completed passes."""
+        return self._core_object.get_int("passes")
+
+    @property
+    def photons_emitted(self):
+        """Photon paths emitted so far (all of them, also those that left the scene)."""
+        return self._core_object.get_int("photons_emitted")
+
+    @property
+    def width(self):
+        return self._core_object.get_int("width")
+
+    @property
+    def height(self):
+        return self._core_object.get_int("height")
+
+    # -- rendering ------------------------------------------------------------------------
+    def render_pass(self):
+        """Runs one pass (eye pass, photon pass, statistics update) without the GIL.
+
+        Raises :class:`ppm.CancelledError` if :meth:`cancel` was called before or during
+        it (the pass is then discarded).
+        """
+        self._core_object.render_pass()
+
+    def render(self, passes=1, progress=None, time_limit=None):
+        """Runs up to ``passes`` passes and returns :meth:`image`.
+
+        ``progress(pass_index, stats)`` is called after each pass with the 0-based index
+        of the pass within this call and a dict (``passes``, ``photons_emitted``,
+        ``elapsed`` seconds since the call started, ``last_eye_pass_seconds``,
+        ``last_photon_pass_seconds``); returning ``False`` (not None) stops early.
+        ``time_limit`` (seconds) stops after the pass that crosses it. A :meth:`cancel`
+        from another thread stops too: the image is then that of the last whole pass.
+        """
+        start = time.perf_counter()
+        for index in range(int(passes)):
+            try:
+                self.render_pass()
+            except CancelledError:
+                break
+            elapsed = time.perf_counter() - start
+            if progress is not None and progress(index, self.stats(elapsed)) is False:
+                break
+            if time_limit is not None and elapsed >= time_limit:
+                break
+        return self.image()
+
+    def stats(self, elapsed=None):
+        """Progress figures: passes, photons emitted, last pass timings (a dict)."""
+        core = self._core_object
+        stats = {
+            "passes": core.get_int("passes"),
+            "photons_emitted": core.get_int("photons_emitted"),
+            "last_eye_pass_seconds": core.get_double("last_eye_pass_seconds"),
+            "last_photon_pass_seconds": core.get_double("last_photon_pass_seconds"),
+        }
+        if elapsed is not None:
+            stats["elapsed"] = elapsed
+        return stats
+
+    def cancel(self):
+        """Stops the running pass as soon as possible, or the next one. Thread safe."""
+        self._core_object.cancel()
+
+    def layer(self, name="radiance"):
+        """An image layer after the last completed pass, row-major from the top-left pixel:
+        ``"radiance"`` float32 ``(H, W, 3)`` linear RGB (W/(m^2 sr)); ``"radius"`` float32
+        ``(H, W)`` gather radius in scene units; ``"photons"`` ``(H, W)`` the alpha-reduced
+        photon count N. Safe to call from another thread during a pass."""
+        channels = _LAYER_CHANNELS.get(name, 1)
+        shape = (self.height, self.width) + ((channels,) if channels > 1 else ())
+        out = np.empty(shape, dtype=np.float32)
+        self._core_object.get_layer(name, out)
+        return out
+
+    def image(self):
+        """The radiance layer: float32 ``(H, W, 3)`` linear RGB."""
+        return self.layer("radiance")
+
+    # -- checkpoints ----------------------------------------------------------------------
+    def save_checkpoint(self, path):
+        """Writes the progressive state after the last whole pass to ``path`` atomically."""
+        self._checkpoints().save_checkpoint(os.fspath(path))
+
+    def load_checkpoint(self, path):
+        """Replaces the state of a renderer that has not run a pass yet by a checkpoint of
+        the same scene, camera and fixed settings; rendering on gives the same image, bit
+        for bit, as an uninterrupted render."""
+        self._checkpoints().load_checkpoint(os.fspath(path))
+
+    def _checkpoints(self):
+        if not _core.has_checkpoints:
+            raise Error("checkpoints: the libppm this module was built against does not "
+                        "implement them (rebuild against a newer libppm)")
+        return self._core_object

@@ -1,0 +1,228 @@
+"""Scenes: geometry, materials, textures, lights; commit; ray queries."""
+import os
+
+import numpy as np
+
+from . import _core, _rays
+from ._arrays import color, index_array, real_array, uint32, vector
+from ._handle import Handle
+from .context import resolve
+
+#: Mitsuba 3's default indices of refraction (glass and air).
+DEFAULT_INT_IOR = 1.5046
+DEFAULT_EXT_IOR = 1.000277
+
+
+class Scene(Handle):
+    """Geometry to ray trace and render, built by ``add_*`` calls, then :meth:`commit`.
+
+    Every ``add_*`` call copies its input and returns an id (geometries, materials and
+    lights are each numbered 0, 1, 2, ... in the order of addition). Geometry adds take an
+    optional ``material`` id. After any change, :meth:`commit` before querying or rendering.
+
+    >>> scene = ppm.Scene()
+    >>> scene.add_sphere((0, 0, 0), 1.0)
+    0
+    >>> scene.commit()
+    >>> scene.intersect((0, 0, -5), (0, 0, 1)).t
+    array(4.)
+
+    ``context``: a :class:`ppm.Context`, default :func:`ppm.default_context`.
+    ``tolerance``: accuracy of hits relative to the scene's bounding-box diagonal
+    (default 1e-9, range [1e-14, 1e-2]).
+    """
+
+    def __init__(self, context=None, tolerance=None):
+        self.context = resolve(context)
+        self._core_object = _core.Scene(self.context._core_object)
+        if tolerance is not None:
+            self.tolerance = tolerance
+
+    @classmethod
+    def _adopt(cls, core_scene, context):
+        scene = cls.__new__(cls)
+        scene.context = context
+        scene._core_object = core_scene
+        return scene
+
+    # -- settings -------------------------------------------------------------------------
+    @property
+    def tolerance(self):
+        """Hit accuracy relative to the bounding-box diagonal; takes effect at commit."""
+        return self._core_object.get_double("tolerance")
+
+    @tolerance.setter
+    def tolerance(self, value):
+        self._core_object.set_double("tolerance", float(value))
+
+    def set(self, key, value):
+        """Sets a floating-point setting of ``ppm_scene_set_double`` by name."""
+        self._core_object.set_double(key, float(value))
+
+    def get(self, key):
+        """A floating-point setting by name."""
+        return self._core_object.get_double(key)
+
+    # -- geometry -------------------------------------------------------------------------
+    def _with_material(self, geom_id, material):
+        if material is not None:
+            self.set_material(geom_id, material)
+        return geom_id
+
+    def add_bezier_patches(self, control_points, material=None):
+        """Adds bicubic Bezier patches as one geometry; returns its id.
+
+        ``control_points``: shape ``(n, 16, 3)`` or ``(n, 4, 4, 3)``; patch p has control
+        points ``P[i][j]`` at ``[p, i, j]`` (or ``[p, 4*i + j]``) and the surface
+        ``S(u, v) = sum_ij B_i(v) B_j(u) P[i][j]``: u runs along a row, v across rows.
+        Hits report the patch index as ``prim_id`` and (u, v) in that patch.
+        """
+        points = real_array(control_points, "control_points", (None, 16, 3), (None, 4, 4, 3))
+        return self._with_material(self._core_object.add_bezier_patches(points), material)
+
+    def load_bpt(self, path, material=None):
+        """Adds the patches of a ``.bpt`` file as one geometry; returns its id."""
+        return self._with_material(self._core_object.load_bpt(os.fspath(path)), material)
+
+    def add_sphere(self, center, radius, material=None):
+        """Adds a sphere; hit (u, v) = (phi / 2pi, theta / pi), theta from +z."""
+        return self._with_material(
+            self._core_object.add_sphere(vector(center, "center"), float(radius)), material)
+
+    def add_quad(self, origin, edge_u, edge_v, material=None):
+        """Adds the parallelogram ``origin + s*edge_u + t*edge_v``, s, t in [0, 1].
+
+        Hit (u, v) = (s, t); geometric normal ``edge_u x edge_v``.
+        """
+        return self._with_material(
+            self._core_object.add_quad(vector(origin, "origin"), vector(edge_u, "edge_u"),
+                                       vector(edge_v, "edge_v")), material)
+
+    def add_mesh(self, positions, indices, normals=None, uvs=None, material=None):
+        """Adds a triangle mesh; returns its id.
+
+        ``positions`` ``(V, 3)``, ``indices`` ``(T, 3)`` integers, optional per-vertex
+        ``normals`` ``(V, 3)`` (interpolated as shading normals) and ``uvs`` ``(V, 2)``.
+        Hit (u, v) are the barycentric coordinates of a triangle's vertices 1 and 2.
+        """
+        positions = real_array(positions, "positions", (None, 3))
+        count = positions.shape[0]
+        indices = index_array(indices, "indices", (None, 3))
+        if normals is not None:
+            normals = real_array(normals, "normals", (count, 3))
+        if uvs is not None:
+            uvs = real_array(uvs, "uvs", (count, 2))
+        return self._with_material(
+            self._core_object.add_triangle_mesh(positions, indices, normals, uvs), material)
+
+    add_triangle_mesh = add_mesh
+
+    def load_obj(self, path, material=None):
+        """Adds a Wavefront OBJ file as one triangle mesh; returns its id."""
+        return self._with_material(self._core_object.load_obj(os.fspath(path)), material)
+
+    def set_transform(self, geom_id, matrix):
+        """Sets a geometry's affine transform: a ``(4, 4)`` (last row 0 0 0 1) or ``(3, 4)``
+        matrix applied to points as ``M @ (x, y, z, 1)``. Spheres need uniform scale."""
+        m = real_array(matrix, "matrix", (4, 4), (3, 4))
+        if m.shape == (3, 4):
+            m = np.vstack([m, [0.0, 0.0, 0.0, 1.0]])
+        self._core_object.set_geometry_transform(uint32(geom_id, "geom_id"), np.ascontiguousarray(m))
+
+    def set_material(self, geom_id, material_id):
+        """Assigns a material id (reported in hits, used by the renderer) to a geometry."""
+        self._core_object.set_geometry_material(uint32(geom_id, "geom_id"),
+                                                uint32(material_id, "material_id"))
+
+    def primitive_count(self, geom_id):
+        """Patches or triangles of a geometry; 1 for a sphere or quad."""
+        return self._core_object.get_primitive_count(uint32(geom_id, "geom_id"))
+
+    def commit(self):
+        """Builds the acceleration structure; needed after any change, before queries."""
+        self._core_object.commit()
+
+    @property
+    def bounds(self):
+        """``(lower, upper)`` corners of the committed scene's box, float64 arrays."""
+        lower, upper = self._core_object.get_bounds()
+        return np.array(lower), np.array(upper)
+
+    # -- materials, textures, lights ------------------------------------------------------
+    def add_diffuse_material(self, reflectance=0.5):
+        """Lambertian material (Mitsuba ``diffuse``); RGB or grey reflectance in [0, 1]."""
+        return self._core_object.add_diffuse_material(color(reflectance, "reflectance"))
+
+    def add_mirror_material(self, specular_reflectance=1.0):
+        """Perfect mirror with a tint (Mitsuba ``conductor``)."""
+        return self._core_object.add_mirror_material(
+            color(specular_reflectance, "specular_reflectance"))
+
+    def add_dielectric_material(self, int_ior=DEFAULT_INT_IOR, ext_ior=DEFAULT_EXT_IOR):
+        """Smooth glass with exact Fresnel (Mitsuba ``dielectric``); normals point outwards."""
+        return self._core_object.add_dielectric_material(float(int_ior), float(ext_ior))
+
+    def add_coated_material(self, diffuse_reflectance=0.5, int_ior=DEFAULT_INT_IOR,
+                            ext_ior=DEFAULT_EXT_IOR):
+        """Diffuse base under a smooth dielectric coat (Mitsuba ``plastic``)."""
+        return self._core_object.add_coated_material(
+            color(diffuse_reflectance, "diffuse_reflectance"), float(int_ior), float(ext_ior))
+
+    def set_texture(self, material_id, path, scale=None, offset=None):
+        """Gives a diffuse, mirror or coated material an image texture (read now).
+
+        Looked up at ``(s * scale[0] + offset[0], t * scale[1] + offset[1])`` for surface
+        texture coordinates (s, t); 8/16-bit images are decoded from sRGB.
+        """
+        self._core_object.set_material_texture(
+            uint32(material_id, "material_id"), os.fspath(path),
+            None if scale is None else vector(scale, "scale", 2),
+            None if offset is None else vector(offset, "offset", 2))
+
+    def set_patch_uv_rects(self, geom_id, rects):
+        """Maps one texture across a patch set: ``rects`` ``(n_patches, 4)`` rows
+        ``(s0, t0, s1, t1)``; patch i's (u, v) maps onto ``[s0, s1] x [t0, t1]``."""
+        r = real_array(rects, "rects", (None, 4))
+        self._core_object.set_patch_uv_rects(uint32(geom_id, "geom_id"), r)
+
+    def add_point_light(self, position, intensity):
+        """Point light; ``intensity`` in W/sr (RGB or grey). Returns the light id."""
+        return self._core_object.add_point_light(vector(position, "position"),
+                                                 color(intensity, "intensity"))
+
+    def add_spot_light(self, position, target, intensity, cutoff_angle=20.0, beam_width=15.0):
+        """Spot light (Mitsuba ``spot``): full ``intensity`` (W/sr) within ``beam_width``
+        degrees of the axis, falling linearly to 0 at ``cutoff_angle``."""
+        return self._core_object.add_spot_light(
+            vector(position, "position"), vector(target, "target"), color(intensity, "intensity"),
+            float(cutoff_angle), float(beam_width))
+
+    def set_emission(self, geom_id, radiance):
+        """Makes a quad or sphere an area light of constant ``radiance`` (W/(m^2 sr)) on the
+        side its normal points to; black turns it off."""
+        self._core_object.set_geometry_emission(uint32(geom_id, "geom_id"),
+                                                color(radiance, "radiance"))
+
+    # -- ray queries ----------------------------------------------------------------------
+    def intersect(self, origins, directions, tnear=0.0, tfar=np.inf):
+        """Closest hits of rays ``origins + t * directions``, t in [tnear, tfar].
+
+        ``origins`` and ``directions`` have shape ``(..., 3)`` and broadcast against each
+        other and against ``tnear`` / ``tfar`` (scalars or batch-shaped); directions need
+        not be unit length (t is in units of ``|direction|``). Returns :class:`ppm.Hits`
+        whose arrays have the broadcast batch shape. A miss has ``t = inf`` and ``geom_id``
+        = ``prim_id`` = :data:`ppm.INVALID_ID` (0xFFFFFFFF; the arrays are uint32). The
+        scene must be committed. Runs without the GIL, on the context's worker threads.
+        """
+        rays, shape = _rays.make_rays(origins, directions, tnear, tfar)
+        hits = np.empty(rays.shape, dtype=_rays.HIT_DTYPE)
+        self._core_object.intersect(rays.view(np.uint8), hits.view(np.uint8))
+        return _rays.Hits(hits, shape)
+
+    def occluded(self, origins, directions, tnear=0.0, tfar=np.inf):
+        """Whether each ray hits anything in [tnear, tfar]: a bool array of the batch shape.
+        Arguments as for :meth:`intersect`."""
+        rays, shape = _rays.make_rays(origins, directions, tnear, tfar)
+        result = np.empty(rays.shape, dtype=np.uint8)
+        self._core_object.occluded(rays.view(np.uint8), result)
+        return result.astype(bool).reshape(shape)

@@ -1,0 +1,72 @@
+// JSON scene files (docs/scene-format.md). Declared in ppm.h before libppm implemented them:
+// compiled only when the libppm this module links has them (CMakeLists.txt checks), and
+// ppm._core.has_scene_files says which.
+#include "camera.h"
+#include "objects.h"
+
+#include <nanobind/stl/string.h>
+
+#include <string>
+
+namespace nb = nanobind;
+
+namespace ppm_py {
+
+#ifdef PPM_PY_HAVE_SCENE_FILES
+
+namespace {
+
+struct SceneFile : Handle<ppm_scene_file, ppm_scene_file_retain, ppm_scene_file_release> {
+    using Handle::Handle;
+};
+
+} // namespace
+
+void bind_scene_file(nb::module_ &m) {
+    m.attr("has_scene_files") = true;
+    nb::class_<SceneFile> cls(m, "SceneFile");
+    // Loading builds and commits the scene and reads textures: no GIL.
+    cls.def("__init__", [](SceneFile *self, Context &context, const std::string &path) {
+        ppm_scene_file file = nullptr;
+        {
+            auto c = context.borrow();
+            nb::gil_scoped_release unlocked;
+            check(ppm_scene_file_load(c.get(), path.c_str(), &file));
+        }
+        new (self) SceneFile(file, "SceneFile");
+    });
+    def_close(cls);
+    cls.def("get_scene", [](SceneFile &f) {
+        ppm_scene scene = nullptr;
+        check(ppm_scene_file_get_scene(f.get(), &scene));
+        return new Scene(scene, "Scene");
+    });
+    cls.def("get_camera", [](SceneFile &f) {
+        ppm_camera camera;
+        check(ppm_scene_file_get_camera(f.get(), &camera));
+        return from_camera(camera);
+    });
+    cls.def("create_renderer", [](SceneFile &f) {
+        ppm_renderer renderer = nullptr;
+        check(ppm_scene_file_create_renderer(f.get(), &renderer));
+        return new Renderer(renderer, "Renderer");
+    });
+    cls.def("get_int", [](SceneFile &f, const std::string &key) {
+        int64_t value = 0;
+        check(ppm_scene_file_get_int(f.get(), key.c_str(), &value));
+        return value;
+    });
+    cls.def("get_double", [](SceneFile &f, const std::string &key) {
+        double value = 0;
+        check(ppm_scene_file_get_double(f.get(), key.c_str(), &value));
+        return value;
+    });
+}
+
+#else
+
+void bind_scene_file(nb::module_ &m) { m.attr("has_scene_files") = false; }
+
+#endif
+
+} // namespace ppm_py

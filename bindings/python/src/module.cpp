@@ -1,0 +1,18 @@
+// ppm._core: a thin typed mirror of <ppm/ppm.h>. See objects.h.
+#include "objects.h"
+
+namespace nb = nanobind;
+
+NB_MODULE(_core, m) {
+    m.doc() = "Low-level bindings of the libppm C API; use the ppm package instead.";
+    ppm_py::register_errors(m);
+    m.def("version", [] { return ppm_version(); });
+    m.def("version_string", [] { return ppm_version_string(); });
+    m.def("status_string", [](int status) { return ppm_status_string(static_cast<ppm_status>(status)); });
+    m.attr("INVALID_ID") = PPM_INVALID_ID;
+    ppm_py::bind_context(m);
+    ppm_py::bind_scene(m);
+    ppm_py::bind_mesh(m);
+    ppm_py::bind_renderer(m);
+    ppm_py::bind_scene_file(m);
+}
