@@ -98,6 +98,7 @@ std::vector<MethodResult> run_methods(const IntersectOptions &o, const std::vect
     auto run = [&](Method &method) {
         results.push_back(run_method(method, sets, driver, method.info().name == explain));
     };
+    warm_up_library(patches);
     if (o.has_method("exact")) {
         for (double tolerance : o.tolerances) run(*make_exact_method(patches, tolerance));
         for (int presplit : o.presplits) run(*make_exact_method(patches, default_tolerance, presplit));

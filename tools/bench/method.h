@@ -70,6 +70,11 @@ public:
 std::unique_ptr<Method> make_exact_method(const std::vector<double> &control_points, double tolerance,
                                           int presplit = 0);
 
+// Builds and drops one exact scene. Embree and TBB allocate global state (task scheduler,
+// per-thread data) at the first commit of the process and keep it until exit; without this
+// the first method measured, whichever it is, is charged 1.5 to 4 MB for it.
+void warm_up_library(const std::vector<double> &control_points);
+
 // The naive methods of the original course project, implemented in the bench: per patch a
 // ray / control-point box test, then Newton on S(u, v) - o - t d = 0 from fixed starts.
 enum class NewtonStarts { center, subpatch_centers, random };

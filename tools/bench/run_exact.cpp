@@ -95,6 +95,12 @@ private:
 
 } // namespace
 
+void warm_up_library(const std::vector<double> &control_points) {
+    ExactMethod method(control_points, 1e-9, 0);
+    method.build(1);
+    method.release();
+}
+
 std::unique_ptr<Method> make_exact_method(const std::vector<double> &control_points, double tolerance,
                                           int presplit) {
     return std::make_unique<ExactMethod>(control_points, tolerance, presplit);
