@@ -416,7 +416,8 @@ bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchR
 
     while (!stack.empty()) {
         const int slot = stack.pop();
-        // Released before the loop body ends: the children, written to other slots, read it.
+        // Freed when this iteration ends, whichever `continue` ends it: until then the
+        // children, written to other slots, are made from it.
         struct Release {
             RegionStack &stack;
             int slot;
