@@ -367,6 +367,25 @@ static void test_scene_tolerance_default(void **state) {
     assert_true(value == 1e-9);
 }
 
+static void test_scene_patch_presplit_default_and_range(void **state) {
+    fixture *f = *state;
+    double value = 0;
+    assert_ppm_ok(ppm_scene_get_double(f->scene, "patch_presplit", &value));
+    assert_true(value == 12);
+    const double bad[] = {NAN, 0.0, -1.0, 33.0, 2.5, INFINITY, 1e9};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i)
+        assert_ppm_error(ppm_scene_set_double(f->scene, "patch_presplit", bad[i]), PPM_ERROR_INVALID_ARGUMENT,
+                         "patch_presplit");
+    assert_ppm_ok(ppm_scene_get_double(f->scene, "patch_presplit", &value));
+    assert_true(value == 12);
+    const double good[] = {1, 32, 4};
+    for (size_t i = 0; i < 3; ++i) {
+        assert_ppm_ok(ppm_scene_set_double(f->scene, "patch_presplit", good[i]));
+        assert_ppm_ok(ppm_scene_get_double(f->scene, "patch_presplit", &value));
+        assert_true(value == good[i]);
+    }
+}
+
 static void test_scene_get_double_null_arguments(void **state) {
     fixture *f = *state;
     double value = 42;
@@ -817,6 +836,9 @@ static void test_queries_after_change_need_commit(void **state) {
     assert_ppm_ok(ppm_scene_commit(f->scene));
     assert_ppm_ok(ppm_scene_set_double(f->scene, "tolerance", 1e-6));
     assert_ppm_error(ppm_scene_intersect(f->scene, &ray, 1, &hit), PPM_ERROR_INVALID_OPERATION, "not committed");
+    assert_ppm_ok(ppm_scene_commit(f->scene));
+    assert_ppm_ok(ppm_scene_set_double(f->scene, "patch_presplit", 3));
+    assert_ppm_error(ppm_scene_intersect(f->scene, &ray, 1, &hit), PPM_ERROR_INVALID_OPERATION, "not committed");
 }
 
 static void test_queries_with_zero_count_succeed(void **state) {
@@ -1032,6 +1054,7 @@ int main(void) {
         TEST(test_scene_tolerance_out_of_range),
         TEST(test_scene_tolerance_accepts_documented_range),
         TEST(test_scene_tolerance_default),
+        TEST(test_scene_patch_presplit_default_and_range),
         TEST(test_scene_get_double_null_arguments),
         TEST(test_scene_get_double_unknown_key_is_named),
         TEST(test_add_patches_null_arguments),

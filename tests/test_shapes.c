@@ -432,6 +432,31 @@ static void test_patch_saddle_hit(void **state) {
     assert_true(hit.p_error > 0);
 }
 
+/* The pre-split ("patch_presplit") changes the work, not the answer: the same hit, (u, v) and
+ * patch at every value, also after re-committing with a smaller one. */
+static void test_patch_presplit_same_hits(void **state) {
+    fixture *f = *state;
+    double points[96];
+    saddle_patch(points);
+    flat_patch(points + 48, 1, 0, 0);
+    assert_ppm_ok(ppm_scene_add_bezier_patches(f->scene, points, 2, NULL));
+    const double presplits[] = {32, 1, 2, 5, 12};
+    for (size_t k = 0; k < sizeof presplits / sizeof presplits[0]; ++k) {
+        assert_ppm_ok(ppm_scene_set_double(f->scene, "patch_presplit", presplits[k]));
+        commit(f->scene);
+        const ppm_hit saddle = trace(f->scene, make_ray(0.3, 0.8, 2, 0, 0, -1));
+        assert_int_equal(saddle.prim_id, 0);
+        assert_close(saddle.t, 2 - 0.24, 1e-8);
+        assert_close(saddle.u, 0.3, 1e-8);
+        assert_close(saddle.v, 0.8, 1e-8);
+        /* On the edge u = 1 of the flat patch: the last sub-patch must reach it. */
+        const ppm_hit edge = trace(f->scene, make_ray(2, 0.5, 1, 0, 0, -1));
+        assert_int_equal(edge.prim_id, 1);
+        assert_close(edge.u, 1, 1e-8);
+        assert_close(edge.v, 0.5, 1e-8);
+    }
+}
+
 static void test_patch_prim_id_names_patch(void **state) {
     fixture *f = *state;
     double points[96];
@@ -813,6 +838,7 @@ int main(void) {
         TEST(test_mesh_tnear_tfar),
         TEST(test_patch_saddle_hit),
         TEST(test_patch_prim_id_names_patch),
+        TEST(test_patch_presplit_same_hits),
         TEST(test_nearest_of_several_spheres),
         TEST(test_nearest_of_mixed_kinds),
         TEST(test_occluded_agrees_with_intersect),

@@ -28,7 +28,9 @@
 // which the reference hit its work bound are "undecided": skipped, counted, and only a tiny
 // fraction of them is allowed.
 //
-// PPM_TEST_QUICK=1 cuts the ray counts about tenfold (sanitizer builds).
+// PPM_TEST_QUICK=1 or --quick cuts the ray counts about tenfold (sanitizer builds).
+// --presplit N sets the scene's "patch_presplit" (default: libppm's): the answers must not
+// depend on it, and ctest runs the suite at 1 and 4 as well as at the default.
 #include <ppm/ppm.h>
 
 #include "reference_intersector.h"
@@ -60,6 +62,7 @@ struct Fixture {
     double diagonal = 0;  // of the scene's bounding box
     double tolerance = 0; // absolute: scene tolerance * diagonal
     bool quick = false;
+    int presplit = 0;     // scene setting "patch_presplit"; 0: libppm's default
 };
 Fixture g;
 
@@ -460,7 +463,7 @@ SurfacePoint random_surface_point(test_rng &rng) {
 
 int setup(void **) {
     const char *quick = std::getenv("PPM_TEST_QUICK");
-    g.quick = quick && *quick && std::strcmp(quick, "0") != 0;
+    g.quick = g.quick || (quick && *quick && std::strcmp(quick, "0") != 0);
     if (ppm_context_create(&g.context) != PPM_OK) return -1;
     // One worker: the timing budget is for one core, and the machine is shared.
     if (ppm_context_set_int(g.context, "threads", 1) != PPM_OK) return -1;
@@ -469,10 +472,15 @@ int setup(void **) {
         std::printf("load: %s\n", ppm_last_error_message());
         return -1;
     }
+    if (g.presplit > 0 && ppm_scene_set_double(g.scene, "patch_presplit", g.presplit) != PPM_OK) {
+        std::printf("patch_presplit: %s\n", ppm_last_error_message());
+        return -1;
+    }
     if (ppm_scene_commit(g.scene) != PPM_OK) return -1;
-    double lo[3], hi[3], tol = 0;
+    double lo[3], hi[3], tol = 0, presplit = 0;
     if (ppm_scene_get_bounds(g.scene, lo, hi) != PPM_OK) return -1;
     if (ppm_scene_get_double(g.scene, "tolerance", &tol) != PPM_OK) return -1;
+    if (ppm_scene_get_double(g.scene, "patch_presplit", &presplit) != PPM_OK) return -1;
     double sum = 0;
     for (int c = 0; c < 3; ++c) sum += (hi[c] - lo[c]) * (hi[c] - lo[c]);
     g.diagonal = std::sqrt(sum);
@@ -485,8 +493,8 @@ int setup(void **) {
         return -1;
     }
     g.reference = new ref::Intersector(std::move(patches));
-    std::printf("teapot: diagonal %.6f, tolerance %.3g (absolute %.3g)%s\n", g.diagonal, tol,
-                g.tolerance, g.quick ? ", quick mode" : "");
+    std::printf("teapot: diagonal %.6f, tolerance %.3g (absolute %.3g), patch_presplit %g%s\n", g.diagonal,
+                tol, g.tolerance, presplit, g.quick ? ", quick mode" : "");
     return 0;
 }
 
@@ -1069,7 +1077,17 @@ void all_cases_total(void **) {
 
 } // namespace
 
-int main() {
+int main(int argc, char **argv) {
+    for (int i = 1; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--quick") == 0) {
+            g.quick = true;
+        } else if (std::strcmp(argv[i], "--presplit") == 0 && i + 1 < argc) {
+            g.presplit = std::atoi(argv[++i]);
+        } else {
+            std::fprintf(stderr, "usage: test_teapot_reference [--quick] [--presplit N]\n");
+            return 2;
+        }
+    }
     const auto start = std::chrono::steady_clock::now();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(model_facts),

@@ -49,6 +49,10 @@ template <class Make> ppm_status add_geometry(ppm_scene scene, uint32_t *out_geo
     return scene_call(scene, [&](ppm::Scene &s) { write_id(out_geom_id, s.add(make())); });
 }
 
+[[noreturn]] void unknown_scene_setting(const char *key) {
+    invalid_argument(std::string("unknown scene setting '") + key + "' (known: tolerance, patch_presplit)");
+}
+
 } // namespace
 
 std::string &ppm::api::last_error() {
@@ -151,9 +155,12 @@ void ppm_scene_release(ppm_scene scene) {
 ppm_status ppm_scene_set_double(ppm_scene scene, const char *key, double value) {
     return scene_call(scene, [&](ppm::Scene &s) {
         require_key(key);
-        if (std::strcmp(key, "tolerance") != 0)
-            invalid_argument(std::string("unknown scene setting '") + key + "' (known: tolerance)");
-        s.set_tolerance(value);
+        if (std::strcmp(key, "tolerance") == 0)
+            s.set_tolerance(value);
+        else if (std::strcmp(key, "patch_presplit") == 0)
+            s.set_patch_presplit(value);
+        else
+            unknown_scene_setting(key);
     });
 }
 
@@ -161,9 +168,12 @@ ppm_status ppm_scene_get_double(ppm_scene scene, const char *key, double *out_va
     return scene_call(scene, [&](ppm::Scene &s) {
         require_key(key);
         require(out_value, "out_value");
-        if (std::strcmp(key, "tolerance") != 0)
-            invalid_argument(std::string("unknown scene setting '") + key + "' (known: tolerance)");
-        *out_value = s.tolerance();
+        if (std::strcmp(key, "tolerance") == 0)
+            *out_value = s.tolerance();
+        else if (std::strcmp(key, "patch_presplit") == 0)
+            *out_value = s.patch_presplit();
+        else
+            unknown_scene_setting(key);
     });
 }
 

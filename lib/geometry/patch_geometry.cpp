@@ -9,14 +9,11 @@ namespace ppm {
 
 namespace {
 
-// Sub-patches per patch edge. Smaller sub-patches give Embree tighter boxes and leave the
-// Krawczyk test less to prove, more cost Embree callbacks; 12 x 12 measured best on the
-// teapot (instruction counts of random rays, see ppm-bench).
-constexpr int presplit_per_edge = 12;
-// Margin around each sub-patch's own domain, as a fraction of its width: a root close to
-// the edge of the domain is then far from the edge of the searched patch, where the interval
-// test proves it unique without subdividing.
-constexpr double search_margin = 0.1;
+// Sub-patches per patch edge come from the scene setting "patch_presplit" (EmbreeFrame).
+// Smaller sub-patches give Embree tighter boxes and leave the Krawczyk test less to prove,
+// more cost Embree callbacks and memory (one control grid each). On the teapot 12 (the
+// default) was the fastest on camera rays and about as fast as 4 on random ones, 24 only 3-5%
+// faster; 1 keeps little more than the patches (ppm-bench intersect, exact-presplit-N).
 
 // Cheap rejection before the patch math: Embree only tested a float box. Clip the ray to
 // the sub-patch's box in double and check that the clipped segment reaches the slab between
@@ -110,21 +107,27 @@ Box3 PatchGeometry::prepare(const Affine &transform) {
         magnitude_.push_back(magnitude);
     }
 
-    data_.sub_patches.clear();
-    data_.sub_patches.reserve(world_.size() * presplit_per_edge * presplit_per_edge);
-    const double step = 1.0 / presplit_per_edge;
-    for (size_t index = 0; index < world_.size(); ++index)
-        for (int i = 0; i < presplit_per_edge; ++i)
-            for (int j = 0; j < presplit_per_edge; ++j) {
-                const double u0 = j * step, u1 = (j + 1) * step;
-                const double v0 = i * step, v1 = (i + 1) * step;
-                data_.sub_patches.push_back(make_sub_patch(world_[index], u0, u1, v0, v1));
-                data_.sub_patches.back().patch_index = static_cast<uint32_t>(index);
-            }
     return bounds;
 }
 
+void PatchGeometry::split_patches(int per_edge) {
+    data_.sub_patches.clear();
+    data_.sub_patches.shrink_to_fit(); // a smaller presplit than last commit's frees memory
+    data_.sub_patches.reserve(world_.size() * per_edge * per_edge);
+    const double step = 1.0 / per_edge;
+    for (size_t index = 0; index < world_.size(); ++index)
+        for (int i = 0; i < per_edge; ++i)
+            for (int j = 0; j < per_edge; ++j) {
+                // The last boundary is exactly 1, not per_edge * step.
+                const double u0 = j * step, u1 = j + 1 == per_edge ? 1.0 : (j + 1) * step;
+                const double v0 = i * step, v1 = i + 1 == per_edge ? 1.0 : (i + 1) * step;
+                data_.sub_patches.push_back(make_sub_patch(world_[index], u0, u1, v0, v1));
+                data_.sub_patches.back().patch_index = static_cast<uint32_t>(index);
+            }
+}
+
 RTCGeometry PatchGeometry::create_embree(RTCDevice device, const EmbreeFrame &frame) {
+    split_patches(frame.patch_presplit);
     data_.frame = frame;
     return new_user_geometry<Data, test_sub_patch>(device, data_, data_.sub_patches.size(),
                                                    sub_patch_bounds);

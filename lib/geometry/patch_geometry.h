@@ -1,5 +1,6 @@
-// Bicubic Bezier patches as Embree user geometry. Each patch is pre-split into sub-patches,
-// which are Embree's primitives, so the BVH culls most of a patch before any patch math.
+// Bicubic Bezier patches as Embree user geometry. Each patch is pre-split into n x n
+// sub-patches (n: the scene setting "patch_presplit"), which are Embree's primitives, so the
+// BVH culls most of a patch before any patch math.
 #pragma once
 
 #include "geometry/bezier.h"
@@ -42,6 +43,9 @@ public:
     };
 
 private:
+    // Fills data_.sub_patches with per_edge x per_edge sub-patches of each world patch.
+    void split_patches(int per_edge);
+
     std::vector<BezierPatch> source_;
     std::vector<double> uv_rects_;
     std::vector<BezierPatch> world_;

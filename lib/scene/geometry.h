@@ -22,7 +22,11 @@ struct EmbreeFrame {
     Vec3 center;
     double box_padding = 0;
     double tolerance = 0; // absolute hit tolerance of the scene
+    int patch_presplit = 12; // scene setting "patch_presplit": sub-patches per patch edge
 };
+
+// Range of the scene setting "patch_presplit" (see ppm.h).
+constexpr int min_patch_presplit = 1, max_patch_presplit = 32;
 
 class Geometry {
 public:

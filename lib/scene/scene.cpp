@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include <cfloat>
+#include <cmath>
 #include <cstring>
 
 namespace ppm {
@@ -86,6 +87,14 @@ void Scene::set_tolerance(double relative) {
     committed_ = false;
 }
 
+void Scene::set_patch_presplit(double per_edge) {
+    if (!(per_edge >= min_patch_presplit && per_edge <= max_patch_presplit) || per_edge != std::floor(per_edge))
+        invalid_argument("patch_presplit " + format_number(per_edge) + " is not a whole number in [" +
+                         std::to_string(min_patch_presplit) + ", " + std::to_string(max_patch_presplit) + "]");
+    patch_presplit_ = static_cast<int>(per_edge);
+    committed_ = false;
+}
+
 void Scene::commit() {
     if (geometries_.empty()) fail(PPM_ERROR_INVALID_OPERATION, "cannot commit a scene without geometry");
     if (rtc_scene_) {
@@ -108,6 +117,7 @@ void Scene::commit() {
     frame_.center = center;
     frame_.tolerance = tolerance_ * diagonal;
     frame_.box_padding = 1e-5 * radius + frame_.tolerance;
+    frame_.patch_presplit = patch_presplit_;
 
     RTCDevice device = context_->device();
     RTCScene rtc = rtcNewScene(device);

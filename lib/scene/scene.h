@@ -35,6 +35,9 @@ public:
 
     void set_tolerance(double relative);
     double tolerance() const { return tolerance_; }
+    // Sub-patches per Bezier patch edge: memory against speed (see PatchGeometry).
+    void set_patch_presplit(double per_edge);
+    int patch_presplit() const { return patch_presplit_; }
 
     void commit();
     bool committed() const { return rtc_scene_ != nullptr && committed_; }
@@ -61,6 +64,7 @@ private:
     std::vector<Material> materials_;
     std::vector<Light> lights_;
     double tolerance_ = 1e-9;
+    int patch_presplit_ = EmbreeFrame{}.patch_presplit;
 
     RTCScene rtc_scene_ = nullptr;
     bool committed_ = false;

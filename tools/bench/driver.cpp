@@ -56,7 +56,7 @@ MethodResult run_method(Method &method, const std::vector<RaySet> &sets, const D
     MethodResult result;
     result.info = method.info();
     const MethodInfo &info = result.info;
-    const double accuracy = info.family == "exact" ? info.value : 0.0;
+    const double accuracy = info.tolerance;
 
     Stopwatch build;
     result.memory = method.build(1);

@@ -50,12 +50,12 @@ bool bad(const std::string &option, const std::string &value, const char *expect
 
 // A comma-separated list of integers in [low, high]; "none" (or an empty value) for none.
 bool integer_list(const std::string &option, const std::string &value, long long low, long long high,
-                  std::vector<int> &out) {
+                  std::vector<int> &out, const char *expected) {
     out.clear();
     if (value == "none") return true;
     for (const std::string &item : split(value)) {
         long long n = 0;
-        if (!parse_integer(item, low, high, n)) return bad(option, value, "a list like 8,32 of grid sizes in [1, 4096], or none");
+        if (!parse_integer(item, low, high, n)) return bad(option, value, expected);
         out.push_back(int(n));
     }
     return true;
@@ -84,6 +84,8 @@ bool name_list(const std::string &option, const std::string &value, const char *
     return true;
 }
 
+constexpr const char *grid_list = "a list like 8,32 of grid sizes in [1, 4096], or none";
+
 bool apply(const std::string &option, const std::string &value, IntersectOptions &o) {
     long long n = 0;
     if (option == "--bpt") {
@@ -105,10 +107,13 @@ bool apply(const std::string &option, const std::string &value, IntersectOptions
     } else if (option == "--tolerances") {
         return double_list(option, value, 1e-14, 1e-2, o.tolerances,
                            "a list like 1e-6,1e-9 of scene tolerances in [1e-14, 1e-2]");
+    } else if (option == "--presplits") {
+        return integer_list(option, value, 1, 32, o.presplits,
+                            "a list like 1,4 of patch_presplit values in [1, 32], or none");
     } else if (option == "--grids") {
-        return integer_list(option, value, 1, 4096, o.grids);
+        return integer_list(option, value, 1, 4096, o.grids, grid_list);
     } else if (option == "--cgal-grids") {
-        return integer_list(option, value, 1, 4096, o.cgal_grids);
+        return integer_list(option, value, 1, 4096, o.cgal_grids, grid_list);
     } else if (option == "--adaptive") {
         return double_list(option, value, 1e-9, 1e-1, o.adaptive,
                            "a list like 1e-3,1e-4 of mesh tolerances / diagonal in [1e-9, 0.1], or none");
@@ -171,6 +176,8 @@ void print_intersect_usage(std::FILE *out) {
         "  --angles LIST         grazing angles in radians (default 1e-2,1e-3,1e-4,1e-6)\n"
         "  --methods LIST        any of exact,newton,embree,adaptive,cgal (default all; cgal if built)\n"
         "  --tolerances LIST     exact method scene tolerances (default 1e-3,1e-6,1e-9,1e-12)\n"
+        "  --presplits LIST      exact method at tolerance 1e-9 with these scene patch_presplit values,\n"
+        "                        methods exact-presplit-N (default 1,2,4,12; 'none' for none)\n"
         "  --grids LIST          uniform grids traced by Embree (default 8,16,32,64,128)\n"
         "  --cgal-grids LIST     uniform grids traced by CGAL (default 8,32,128)\n"
         "  --adaptive LIST       adaptive meshes traced by Embree, tolerance / diagonal\n"

@@ -16,6 +16,7 @@ struct IntersectOptions {
     std::vector<double> angles = {1e-2, 1e-3, 1e-4, 1e-6};
     std::vector<std::string> methods = {"exact", "newton", "embree", "adaptive", "cgal"};
     std::vector<double> tolerances = {1e-3, 1e-6, 1e-9, 1e-12};
+    std::vector<int> presplits = {1, 2, 4, 12}; // exact method at tolerance 1e-9, patch_presplit N
     std::vector<int> grids = {8, 16, 32, 64, 128};
     std::vector<int> cgal_grids = {8, 32, 128};
     std::vector<double> adaptive = {1e-3, 1e-4, 1e-5}; // mesh tolerances / diagonal

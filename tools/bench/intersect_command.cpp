@@ -98,8 +98,11 @@ std::vector<MethodResult> run_methods(const IntersectOptions &o, const std::vect
     auto run = [&](Method &method) {
         results.push_back(run_method(method, sets, driver, method.info().name == explain));
     };
-    if (o.has_method("exact"))
+    warm_up_library(patches);
+    if (o.has_method("exact")) {
         for (double tolerance : o.tolerances) run(*make_exact_method(patches, tolerance));
+        for (int presplit : o.presplits) run(*make_exact_method(patches, default_tolerance, presplit));
+    }
     if (o.has_method("newton")) {
         run(*make_newton_method(patches, NewtonStarts::center, 1));
         run(*make_newton_method(patches, NewtonStarts::subpatch_centers, 4));

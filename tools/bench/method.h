@@ -38,6 +38,7 @@ struct MethodInfo {
     size_t primitives = 0;  // patches or triangles
     double tessellate_seconds = 0; // wall time to make the mesh (library, all threads); 0 for patches
     double deviation = 0;   // the mesh's measured max distance from the patches, / diagonal
+    double tolerance = 0;   // the |dt| / diagonal the method promises (libppm's scene tolerance); 0: none
     // Tolerance of the hits this method's rays are spawned from (the `leaving` set): the
     // scene tolerance for the exact method, libppm's default 1e-9 for every other one.
     double spawn_tolerance = 1e-9;
@@ -63,8 +64,16 @@ public:
     virtual void trace(const std::vector<ppm_ray> &rays, size_t begin, size_t end, Trace &out) const = 0;
 };
 
-// libppm's exact intersector through the public C API, scene tolerance `tolerance`.
-std::unique_ptr<Method> make_exact_method(const std::vector<double> &control_points, double tolerance);
+// libppm's exact intersector through the public C API, scene tolerance `tolerance`. With
+// `presplit` > 0 the scene setting "patch_presplit" is set too and the method is named after
+// it (exact-presplit-N, family exact-presplit); 0 leaves libppm's default.
+std::unique_ptr<Method> make_exact_method(const std::vector<double> &control_points, double tolerance,
+                                          int presplit = 0);
+
+// Builds and drops one exact scene. Embree and TBB allocate global state (task scheduler,
+// per-thread data) at the first commit of the process and keep it until exit; without this
+// the first method measured, whichever it is, is charged 1.5 to 4 MB for it.
+void warm_up_library(const std::vector<double> &control_points);
 
 // The naive methods of the original course project, implemented in the bench: per patch a
 // ray / control-point box test, then Newton on S(u, v) - o - t d = 0 from fixed starts.

@@ -4,10 +4,11 @@
 Reads the CSV the bench writes (one row per ray set and method) and draws, for the chosen
 ray sets (default: random and camera rays, one column each), rays per second (x, log)
 against the 99.9th percentile and the maximum of |dt| / bounding-box diagonal (y, log), and
-against the failure rate (misses + false hits per ray): one curve per method family
-(libppm's exact intersector over its tolerances, uniform meshes in Embree and CGAL over the
-grid size, adaptive meshes over their tolerance) and the naive Newton variants as points,
-each labelled with its parameter. Writes DIR/NAME.png and DIR/NAME.svg.
+against the failure rate (misses + false hits per ray) and against the memory taken: one
+curve per method family (libppm's exact intersector over its tolerances and over its
+patch_presplit setting, uniform meshes in Embree and CGAL over the grid size, adaptive meshes
+over their tolerance) and the naive Newton variants as points, each labelled with its
+parameter. Writes DIR/NAME.png and DIR/NAME.svg.
 
 Usage: plot_bench.py --csv bench-results.csv --out DIR [--name intersect]
                      [--sets random,camera] [--threads 1|all]
@@ -26,6 +27,7 @@ import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 # Drawn in this order; label, colour, marker, whether the points form a curve.
 FAMILIES = [
     ("exact", "libppm exact (tolerance)", "tab:red", "o", True),
+    ("exact-presplit", "libppm exact 1e-9 (patch_presplit p)", "tab:orange", "P", True),
     ("embree-uniform", "Embree, uniform mesh (N)", "tab:blue", "s", True),
     ("embree-adaptive", "Embree, adaptive mesh (tol.)", "tab:cyan", "D", True),
     ("cgal-uniform", "CGAL AABB tree, uniform mesh (N)", "tab:green", "^", True),
@@ -50,6 +52,8 @@ def short_value(row):
         return "N%d" % int(value)
     if family == "newton":
         return row["method"].replace("newton-", "")
+    if family == "exact-presplit":
+        return "p%d" % int(value)
     exponent = math.log10(value) if value and value > 0 else 0
     if abs(exponent - round(exponent)) < 1e-9:
         return "1e%d" % round(exponent)
@@ -64,6 +68,12 @@ def failure_rate(row):
     return ((number(row["misses"]) or 0) + (number(row["false_hits"]) or 0)) / decided
 
 
+def memory_mb(row):
+    """Input arrays plus acceleration structure, in MB (2^20 bytes); None if not measured."""
+    total = (number(row["array_bytes"]) or 0) + (number(row["structure_bytes"]) or 0)
+    return total / 1048576.0 if total > 0 else None
+
+
 def read_rows(path):
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
@@ -72,7 +82,7 @@ def read_rows(path):
 def draw(rows, sets, threads, out_dir, name):
     speed_key = "rays_per_s_1t" if threads == "1" else "rays_per_s_all"
     metrics = [("dt_p999_rel", "p99.9 |dt| / diagonal"), ("dt_max_rel", "max |dt| / diagonal"),
-               ("failures", "(misses + false hits) / rays")]
+               ("failures", "(misses + false hits) / rays"), ("memory", "memory MB (input + structure)")]
     fig, axes = plt.subplots(len(metrics), len(sets), figsize=(6.5 * len(sets), 4.0 * len(metrics)),
                              squeeze=False)
     handles = {}
@@ -95,6 +105,8 @@ def draw(rows, sets, threads, out_dir, name):
                         y = failure_rate(r)
                         if y is not None:
                             y = max(y, zero_rate)
+                    elif key == "memory":
+                        y = memory_mb(r)
                     else:
                         y = number(r[key])  # None: no matched hit, nothing to plot
                         if y is not None:

@@ -15,13 +15,21 @@ namespace {
 
 class ExactMethod final : public Method {
 public:
-    ExactMethod(const std::vector<double> &control_points, double tolerance)
-        : control_points_(control_points) {
-        info_.name = "exact-" + format_number(tolerance);
-        info_.family = "exact";
-        info_.parameter = "tolerance";
-        info_.value = tolerance;
+    ExactMethod(const std::vector<double> &control_points, double tolerance, int presplit)
+        : control_points_(control_points), presplit_(presplit) {
+        if (presplit > 0) {
+            info_.name = "exact-presplit-" + std::to_string(presplit);
+            info_.family = "exact-presplit";
+            info_.parameter = "presplit";
+            info_.value = presplit;
+        } else {
+            info_.name = "exact-" + format_number(tolerance);
+            info_.family = "exact";
+            info_.parameter = "tolerance";
+            info_.value = tolerance;
+        }
         info_.primitives = control_points.size() / 48;
+        info_.tolerance = tolerance;
         info_.spawn_tolerance = tolerance;
     }
     ~ExactMethod() override { release(); }
@@ -36,7 +44,9 @@ public:
         MemoryDelta memory;
         check(ppm_context_set_int(context_, "threads", threads), "ppm_context_set_int(threads)");
         check(ppm_scene_create(context_, &scene_), "ppm_scene_create");
-        check(ppm_scene_set_double(scene_, "tolerance", info_.value), "ppm_scene_set_double(tolerance)");
+        check(ppm_scene_set_double(scene_, "tolerance", info_.tolerance), "ppm_scene_set_double(tolerance)");
+        if (presplit_ > 0)
+            check(ppm_scene_set_double(scene_, "patch_presplit", presplit_), "ppm_scene_set_double(patch_presplit)");
         check(ppm_scene_add_bezier_patches(scene_, control_points_.data(), info_.primitives, nullptr),
               "ppm_scene_add_bezier_patches");
         check(ppm_scene_commit(scene_), "ppm_scene_commit");
@@ -77,6 +87,7 @@ public:
 
 private:
     std::vector<double> control_points_;
+    int presplit_; // 0: libppm's default
     MethodInfo info_;
     ppm_context context_ = nullptr;
     ppm_scene scene_ = nullptr;
@@ -84,8 +95,15 @@ private:
 
 } // namespace
 
-std::unique_ptr<Method> make_exact_method(const std::vector<double> &control_points, double tolerance) {
-    return std::make_unique<ExactMethod>(control_points, tolerance);
+void warm_up_library(const std::vector<double> &control_points) {
+    ExactMethod method(control_points, 1e-9, 0);
+    method.build(1);
+    method.release();
+}
+
+std::unique_ptr<Method> make_exact_method(const std::vector<double> &control_points, double tolerance,
+                                          int presplit) {
+    return std::make_unique<ExactMethod>(control_points, tolerance, presplit);
 }
 
 } // namespace bench

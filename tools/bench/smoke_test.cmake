@@ -4,7 +4,7 @@
 file(REMOVE_RECURSE ${OUT})
 execute_process(
   COMMAND ${BENCH} intersect --rays 200 --width 16 --height 16 --angles 1e-3,1e-6
-          --tolerances 1e-6,1e-9 --grids 4,8 --cgal-grids 4 --adaptive 1e-2 --cgal-adaptive none
+          --tolerances 1e-6,1e-9 --presplits 1,4 --grids 4,8 --cgal-grids 4 --adaptive 1e-2 --cgal-adaptive none
           --min-time 0 --threads 2 --list 2 --out ${OUT} --csv ${OUT}/smoke.csv
   RESULT_VARIABLE status
   OUTPUT_VARIABLE output
@@ -19,6 +19,7 @@ foreach(pattern
     "\n== grazing-1e-6: 50 rays"
     "\n== leaving: "
     "\nexact-1e-9 +[0-9.e+-]+ +[0-9.e+-]+ +0 +0 "
+    "\nexact-presplit-1 +[0-9.e+-]+ +[0-9.e+-]+ +0 +0 "
     "\nnewton-r16 "
     "\nembree-N8 "
     "\nembree-adaptive-1e-2 "

@@ -16,7 +16,7 @@ constexpr double max_normal_error = 1.0; // degrees
 void print_suspects(std::FILE *out, const std::vector<RaySet> &sets, const MethodResult &exact, double diagonal,
                     size_t max_listed) {
     // Only the exact method promises an accuracy.
-    const double tolerance = exact.info.family == "exact" ? exact.info.value : INFINITY;
+    const double tolerance = exact.info.tolerance > 0 ? exact.info.tolerance : INFINITY;
     if (std::isfinite(tolerance))
         std::fprintf(out, "\nDisagreements of %s with the reference (miss, false hit, |dt| above the tolerance "
                           "%g diag, or normal error above 1 degree):\n", exact.info.name.c_str(), tolerance);
