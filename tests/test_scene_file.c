@@ -113,6 +113,20 @@ static void test_small_box_builds_what_it_says(void **state) {
     assert_int_equal(ppm_scene_intersect(scene, &up_ray, 1, &hit), PPM_OK);
     assert_close(hit.t, 0.99, 1e-9);
 
+    /* Other shapes are not patch sets; a scene being changed has no world patches yet. */
+    size_t geometries = 0;
+    assert_int_equal(ppm_scene_get_geometry_count(scene, &geometries), PPM_OK);
+    assert_int_equal(geometries, 6);
+    double points[48];
+    assert_int_equal(ppm_scene_get_bezier_patches(scene, 4, points, 48), PPM_ERROR_INVALID_ARGUMENT);
+    assert_non_null(strstr(ppm_last_error_message(), "not a patch set"));
+    ppm_scene fresh = NULL;
+    assert_int_equal(ppm_scene_create(f->context, &fresh), PPM_OK);
+    uint32_t patch_id = 0;
+    assert_int_equal(ppm_scene_load_bpt(fresh, PPM_TEAPOT, &patch_id), PPM_OK);
+    assert_int_equal(ppm_scene_get_bezier_patches(fresh, patch_id, points, 48), PPM_ERROR_INVALID_OPERATION);
+    ppm_scene_release(fresh);
+
     ppm_renderer renderer = NULL;
     assert_int_equal(ppm_scene_file_create_renderer(file, &renderer), PPM_OK);
     int64_t value = 0;
@@ -151,6 +165,25 @@ static void test_defaults_and_inline_patches(void **state) {
     ppm_hit hit;
     assert_int_equal(ppm_scene_intersect(scene, &ray, 1, &hit), PPM_OK);
     assert_close(hit.t, 5, 1e-9);
+
+    /* The patch comes back in world space: the file's translation applied. */
+    size_t geometries = 0;
+    assert_int_equal(ppm_scene_get_geometry_count(scene, &geometries), PPM_OK);
+    assert_int_equal(geometries, 1);
+    double points[48];
+    assert_int_equal(ppm_scene_get_bezier_patches(scene, 0, points, 48), PPM_OK);
+    assert_close(points[0], -1.5, 0);
+    assert_close(points[1], -1.5, 0);
+    assert_close(points[2], 5, 0);
+    assert_close(points[45], 1.5, 0);
+    assert_close(points[46], 1.5, 0);
+    assert_int_equal(ppm_scene_get_bezier_patches(scene, 0, points, 47), PPM_ERROR_INVALID_ARGUMENT);
+    assert_non_null(strstr(ppm_last_error_message(), "need 48"));
+    assert_int_equal(ppm_scene_get_bezier_patches(scene, 0, NULL, 48), PPM_ERROR_INVALID_ARGUMENT);
+    assert_int_equal(ppm_scene_get_bezier_patches(scene, 1, points, 48), PPM_ERROR_INVALID_ARGUMENT);
+    assert_int_equal(ppm_scene_get_bezier_patches(NULL, 0, points, 48), PPM_ERROR_INVALID_ARGUMENT);
+    assert_int_equal(ppm_scene_get_geometry_count(scene, NULL), PPM_ERROR_INVALID_ARGUMENT);
+    assert_int_equal(ppm_scene_get_geometry_count(NULL, &geometries), PPM_ERROR_INVALID_ARGUMENT);
 
     /* No light at all: passes run and the image is black. */
     ppm_renderer renderer = NULL;
