@@ -204,12 +204,17 @@ void Renderer::load_checkpoint(const std::string &path) {
         s.n = v[0], s.r2 = v[1], s.tau = Rgb{v[2], v[3], v[4]}, s.direct = Rgb{v[5], v[6], v[7]};
     }
 
-    // Rebuild the slots as the first pass made them, then take the statistics.
+    // Rebuild the slots as the first pass made them (SPPM: one per pixel; PPM: the first eye
+    // pass's split paths, traced again), then take the statistics.
     slot_pixel_.clear();
-    eye_pass(0);
-    if (cancelled()) {
-        slot_pixel_.clear();
-        fail(PPM_ERROR_CANCELLED, "loading the checkpoint was cancelled");
+    if (settings_.mode == RenderSettings::Mode::Sppm) {
+        init_pixel_slots();
+    } else {
+        eye_pass(0);
+        if (cancelled()) {
+            slot_pixel_.clear();
+            fail(PPM_ERROR_CANCELLED, "loading the checkpoint was cancelled");
+        }
     }
     if (slot_pixel_ != pixels) {
         slot_pixel_.clear();

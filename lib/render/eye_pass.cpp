@@ -161,21 +161,27 @@ void Renderer::trace_split_path(const ppm_ray &start, Rgb weight, int depth, dou
     }
 }
 
-void Renderer::eye_pass(std::uint32_t pass) {
-    const std::uint32_t pixels = static_cast<std::uint32_t>(camera_.width()) * camera_.height();
+double Renderer::flux_scale() const {
     // Without any light (or only black ones) no photon is traced and the image is black; the
     // accumulator still needs a valid scale.
     const double power = render_scene_.total_power().max();
-    const double flux_scale = power > 0 ? power : 1.0;
+    return power > 0 ? power : 1.0;
+}
+
+void Renderer::init_pixel_slots() {
+    const std::uint32_t pixels = static_cast<std::uint32_t>(camera_.width()) * camera_.height();
+    slot_pixel_.resize(pixels);
+    for (std::uint32_t p = 0; p < pixels; ++p) slot_pixel_[p] = p;
+    stats_.assign(pixels, PixelStatistics{});
+    visible_.assign(pixels, VisiblePoint{});
+    pass_direct_.assign(pixels, Rgb());
+    flux_ = std::make_unique<FluxAccumulator>(pixels, flux_scale());
+}
+
+void Renderer::eye_pass(std::uint32_t pass) {
+    const std::uint32_t pixels = static_cast<std::uint32_t>(camera_.width()) * camera_.height();
     if (settings_.mode == RenderSettings::Mode::Sppm) {
-        if (slot_pixel_.empty()) {
-            slot_pixel_.resize(pixels);
-            for (std::uint32_t p = 0; p < pixels; ++p) slot_pixel_[p] = p;
-            stats_.assign(pixels, PixelStatistics{});
-            visible_.assign(pixels, VisiblePoint{});
-            pass_direct_.assign(pixels, Rgb());
-            flux_ = std::make_unique<FluxAccumulator>(pixels, flux_scale);
-        }
+        if (slot_pixel_.empty()) init_pixel_slots();
         scene_->context().run([&] {
             tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, pixels, 256), [&](const auto &range) {
                 if (cancelled()) return;
@@ -223,7 +229,7 @@ void Renderer::eye_pass(std::uint32_t pass) {
     }
     stats_.assign(slot_pixel_.size(), PixelStatistics{});
     pass_direct_.assign(slot_pixel_.size(), Rgb());
-    flux_ = std::make_unique<FluxAccumulator>(slot_pixel_.size(), flux_scale);
+    flux_ = std::make_unique<FluxAccumulator>(slot_pixel_.size(), flux_scale());
 }
 
 void Renderer::direct_pass(std::uint32_t pass) {

@@ -106,6 +106,8 @@ public:
 
 private:
     void eye_pass(std::uint32_t pass);
+    void init_pixel_slots(); // SPPM: one slot per pixel, statistics zero
+    double flux_scale() const; // for the FluxAccumulator
     void photon_pass(std::uint32_t pass);
     void direct_pass(std::uint32_t pass); // PPM: direct light again at the fixed points
     void build_search();

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <regex>
+#include <cstdio>
 #include <sstream>
 
 namespace ppm {
@@ -21,10 +21,13 @@ namespace {
 // jsoncpp's messages look like "* Line 3, Column 5\n  Missing ',' or '}' in object declaration\n";
 // this turns the first one into "path:3:5: Missing ',' or '}' in object declaration".
 std::string first_jsoncpp_error(const std::string &path, const std::string &errors) {
-    static const std::regex first(R"(\* Line (\d+), Column (\d+)\s*\n\s*([^\n]*))");
-    std::smatch match;
-    if (std::regex_search(errors, match, first))
-        return path + ":" + match[1].str() + ":" + match[2].str() + ": " + match[3].str();
+    int line = 0, column = 0, consumed = 0;
+    if (std::sscanf(errors.c_str(), "* Line %d, Column %d%n", &line, &column, &consumed) == 2) {
+        const std::size_t start = errors.find_first_not_of(" \n", static_cast<std::size_t>(consumed));
+        const std::size_t end = start == std::string::npos ? start : errors.find('\n', start);
+        const std::string message = start == std::string::npos ? "syntax error" : errors.substr(start, end - start);
+        return path + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + message;
+    }
     return path + ": " + errors;
 }
 
@@ -155,7 +158,7 @@ std::int64_t JsonNode::integer(std::int64_t low, std::int64_t high) const {
     if (!is_number()) fail(range);
     const double v = value_->asDouble();
     if (!(std::floor(v) == v && v >= static_cast<double>(low) && v <= static_cast<double>(high))) fail(range);
-    return value_->isIntegral() && !value_->isDouble() ? value_->asInt64() : static_cast<std::int64_t>(v);
+    return static_cast<std::int64_t>(v); // whole and in range: exact (the ranges used stay below 2^53)
 }
 
 bool JsonNode::boolean() const {

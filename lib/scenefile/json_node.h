@@ -75,8 +75,7 @@ public:
     std::array<double, 3> vec3() const;             // [x, y, z]
     std::array<double, 3> color(bool reflectance) const; // number, [r, g, b] or {"type": "rgb", "value": ...}
 
-    // Member shortcuts with defaults.
-    double number_or(const char *key, double fallback) const { return has(key) ? at(key).number() : fallback; }
+    // Member shortcut with a default.
     std::array<double, 3> vec3_or(const char *key, std::array<double, 3> fallback) const {
         return has(key) ? at(key).vec3() : fallback;
     }

@@ -14,6 +14,12 @@ namespace {
 
 std::array<double, 3> to_array(const Vec3 &v) { return {v.x, v.y, v.z}; }
 
+// A colour given as {"type": "bitmap", ...} rather than a number, [r, g, b] or {"type": "rgb"}.
+bool is_bitmap(const JsonNode &color) {
+    return color.is_object() && color.has("type") && color.at("type").is_string() &&
+           color.at("type").string() == "bitmap";
+}
+
 } // namespace
 
 void SceneBuilder::check(const JsonNode &node, ppm_status status) const {
@@ -63,9 +69,7 @@ std::uint32_t SceneBuilder::add_bsdf(const JsonNode &bsdf) {
     }
 
     std::array<double, 3> color{default_color, default_color, default_color};
-    const bool textured = color_key && bsdf.has(color_key) && bsdf.at(color_key).is_object() &&
-                          bsdf.at(color_key).has("type") && bsdf.at(color_key).at("type").is_string() &&
-                          bsdf.at(color_key).at("type").string() == "bitmap";
+    const bool textured = color_key && bsdf.has(color_key) && is_bitmap(bsdf.at(color_key));
     if (color_key && bsdf.has(color_key) && !textured) color = bsdf.at(color_key).color(true);
     const auto ior = [&](const char *key, double fallback) {
         return bsdf.has(key) ? bsdf.at(key).positive() : fallback;
