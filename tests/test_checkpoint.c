@@ -14,8 +14,8 @@ static const char *const small_box = PPM_TEST_DATA_DIR "/scenes/small_box.json";
 typedef struct fixture {
     ppm_context context;
     ppm_scene_file file;
-    char folder[64];
-    char path[128];
+    char folder[256];
+    char path[320];
 } fixture;
 
 static int setup(void **state) {
@@ -23,8 +23,7 @@ static int setup(void **state) {
     assert_non_null(f);
     assert_int_equal(ppm_context_create(&f->context), PPM_OK);
     assert_int_equal(ppm_scene_file_load(f->context, small_box, &f->file), PPM_OK);
-    strcpy(f->folder, "/tmp/ppm-checkpoint-test-XXXXXX");
-    assert_non_null(mkdtemp(f->folder));
+    assert_int_equal(test_make_folder(f->folder, sizeof f->folder, "ppm-checkpoint-test-"), 0);
     snprintf(f->path, sizeof f->path, "%s/render.ppmckpt", f->folder);
     *state = f;
     return 0;
@@ -32,9 +31,7 @@ static int setup(void **state) {
 
 static int teardown(void **state) {
     fixture *f = *state;
-    char command[160];
-    snprintf(command, sizeof command, "rm -rf '%s'", f->folder);
-    assert_int_equal(system(command), 0);
+    test_remove_folder(f->folder);
     ppm_scene_file_release(f->file);
     ppm_context_release(f->context);
     free(f);
@@ -147,13 +144,13 @@ static void test_bad_checkpoints_are_refused(void **state) {
     assert_int_equal(ppm_renderer_load_checkpoint(r, f->path), PPM_ERROR_INVALID_OPERATION);
     ppm_renderer_release(r);
 
-    char other[160];
+    char other[320];
     snprintf(other, sizeof other, "%s/other", f->folder);
     expect_load_error(f, "/nonexistent/render.ppmckpt", PPM_ERROR_IO, "/nonexistent/render.ppmckpt");
     expect_load_error(f, small_box, PPM_ERROR_PARSE, "not a libppm checkpoint");
 
     /* A flipped bit in the statistics fails the checksum; a cut file is truncated. */
-    char command[400];
+    char command[800];
     const long size = file_size(f->path);
     snprintf(command, sizeof command, "cp '%s' '%s'", f->path, other);
     assert_int_equal(system(command), 0);

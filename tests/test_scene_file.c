@@ -14,16 +14,15 @@ static const char *const small_box = PPM_TEST_DATA_DIR "/scenes/small_box.json";
 
 typedef struct fixture {
     ppm_context context;
-    char folder[64];
-    char path[128];
+    char folder[256];
+    char path[320];
 } fixture;
 
 static int setup(void **state) {
     fixture *f = calloc(1, sizeof *f);
     assert_non_null(f);
     assert_int_equal(ppm_context_create(&f->context), PPM_OK);
-    strcpy(f->folder, "/tmp/ppm-scene-test-XXXXXX");
-    assert_non_null(mkdtemp(f->folder));
+    assert_int_equal(test_make_folder(f->folder, sizeof f->folder, "ppm-scene-test-"), 0);
     snprintf(f->path, sizeof f->path, "%s/scene.json", f->folder);
     *state = f;
     return 0;
@@ -31,9 +30,7 @@ static int setup(void **state) {
 
 static int teardown(void **state) {
     fixture *f = *state;
-    char command[160];
-    snprintf(command, sizeof command, "rm -rf '%s'", f->folder);
-    assert_int_equal(system(command), 0);
+    test_remove_folder(f->folder);
     ppm_context_release(f->context);
     free(f);
     return 0;
@@ -274,7 +271,7 @@ static void test_missing_and_malformed_files(void **state) {
     assert_int_equal(ppm_scene_file_load(f->context, f->folder, &file), PPM_ERROR_IO); /* a directory */
 
     /* Files named inside are relative to the scene's folder; their own errors keep both places. */
-    char bpt[160];
+    char bpt[320];
     snprintf(bpt, sizeof bpt, "%s/bad.bpt", f->folder);
     write_text(bpt, "1\n3 3\n0 0 0\n");
     EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"bezier\", \"filename\": \"bad.bpt\"}]}", PPM_ERROR_PARSE,

@@ -643,9 +643,7 @@ typedef struct tool_fixture {
 static int tool_setup(void **state) {
     tool_fixture *f = calloc(1, sizeof *f);
     if (!f) return -1;
-    const char *tmp = getenv("TMPDIR");
-    snprintf(f->dir, sizeof f->dir, "%s/ppm_test_tess_XXXXXX", tmp && tmp[0] ? tmp : "/tmp");
-    if (!mkdtemp(f->dir)) {
+    if (test_make_folder(f->dir, sizeof f->dir, "ppm_test_tess_") != 0) {
         free(f);
         return -1;
     }
@@ -655,18 +653,7 @@ static int tool_setup(void **state) {
 
 static int tool_teardown(void **state) {
     tool_fixture *f = *state;
-    DIR *dir = opendir(f->dir);
-    if (dir) {
-        struct dirent *entry;
-        char path[600];
-        while ((entry = readdir(dir)))
-            if (strcmp(entry->d_name, ".") && strcmp(entry->d_name, "..")) {
-                snprintf(path, sizeof path, "%s/%s", f->dir, entry->d_name);
-                remove(path);
-            }
-        closedir(dir);
-    }
-    rmdir(f->dir);
+    test_remove_folder(f->dir);
     free(f);
     return 0;
 }

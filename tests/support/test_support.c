@@ -2,9 +2,12 @@
 
 #include <ppm/ppm.h>
 
+#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
 
 double test_rng_uniform(test_rng *rng) {
     uint64_t z = (rng->state += 0x9E3779B97F4A7C15ull);
@@ -40,4 +43,26 @@ int scene_fixture_teardown(void **state) {
     ppm_context_release(f->context);
     free(f);
     return 0;
+}
+
+int test_make_folder(char *out, size_t size, const char *prefix) {
+    const char *tmp = getenv("TMPDIR");
+    const int n = snprintf(out, size, "%s/%sXXXXXX", tmp && tmp[0] ? tmp : "/tmp", prefix);
+    if (n < 0 || (size_t)n >= size) return -1;
+    return mkdtemp(out) ? 0 : -1;
+}
+
+void test_remove_folder(const char *path) {
+    DIR *dir = opendir(path);
+    if (dir) {
+        struct dirent *entry;
+        char file[1024];
+        while ((entry = readdir(dir)))
+            if (strcmp(entry->d_name, ".") && strcmp(entry->d_name, "..")) {
+                snprintf(file, sizeof file, "%s/%s", path, entry->d_name);
+                remove(file);
+            }
+        closedir(dir);
+    }
+    rmdir(path);
 }

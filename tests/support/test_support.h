@@ -34,6 +34,12 @@ double test_rng_uniform(test_rng *rng); /* [0, 1) */
 void _assert_close(double a, double b, double tolerance, const char *a_text, const char *b_text,
                    const char *file, int line);
 
+/* A new empty folder $TMPDIR/<prefix>XXXXXX (TMPDIR defaults to /tmp); its path goes into out.
+ * Returns 0, or -1 if it cannot be made. */
+int test_make_folder(char *out, size_t size, const char *prefix);
+/* Removes the files in a folder made by test_make_folder (not recursive), then the folder. */
+void test_remove_folder(const char *path);
+
 #ifdef __cplusplus
 }
 #endif
