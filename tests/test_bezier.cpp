@@ -128,6 +128,22 @@ void sub_patch_reproduces_its_domain(void **) {
     for (int k = 0; k < 16; ++k) assert_vec_close(same.p[k], p.p[k], 0);
 }
 
+// The interval matrices cut the same sub-patch as De Casteljau, to rounding; over [0, 1]
+// they are the identity.
+void interval_matrices_cut_the_same_sub_patch(void **) {
+    const BezierPatch p = wavy_patch();
+    const double u0 = 0.2, u1 = 0.65, v0 = 0.4, v1 = 0.9;
+    const BezierPatch q = sub_patch(p, u0, u1, v0, v1);
+    double x[16], y[16], z[16];
+    sub_patch_soa(p, IntervalMatrix::of(u0, u1), IntervalMatrix::of(v0, v1), x, y, z);
+    for (int k = 0; k < 16; ++k) assert_vec_close(Vec3{x[k], y[k], z[k]}, q.p[k], 1e-14);
+    sub_patch_soa(p, IntervalMatrix::of(0, 1), IntervalMatrix::of(0, 1), x, y, z);
+    for (int k = 0; k < 16; ++k) assert_vec_close(Vec3{x[k], y[k], z[k]}, p.p[k], 0);
+    // Each row of weights sums to one (affine invariance).
+    const IntervalMatrix m = IntervalMatrix::of(0.25, 0.5);
+    for (const auto &row : m.w) assert_true(std::fabs(row[0] + row[1] + row[2] + row[3] - 1) < 1e-15);
+}
+
 void control_hull_bounds_the_surface(void **) {
     const BezierPatch p = wavy_patch();
     const Box3 box = control_bounds(p);
@@ -197,6 +213,7 @@ int main() {
         cmocka_unit_test(derivatives_match_central_differences),
         cmocka_unit_test(split_halves_reproduce_the_parent),
         cmocka_unit_test(sub_patch_reproduces_its_domain),
+        cmocka_unit_test(interval_matrices_cut_the_same_sub_patch),
         cmocka_unit_test(control_hull_bounds_the_surface),
         cmocka_unit_test(normal_of_hyperbolic_paraboloid_is_analytic),
         cmocka_unit_test(collapsed_edge_gives_the_limit_normal),

@@ -114,6 +114,53 @@ BezierPatch sub_patch(const BezierPatch &patch, double u0, double u1, double v0,
     return d;
 }
 
+IntervalMatrix IntervalMatrix::of(double a, double b) {
+    IntervalMatrix m;
+    for (int k = 0; k < 4; ++k) {
+        // De Casteljau on the unit coefficient vectors, one level per blossom argument.
+        const double args[3] = {k >= 3 ? b : a, k >= 2 ? b : a, k >= 1 ? b : a};
+        for (int point = 0; point < 4; ++point) {
+            double c[4] = {0, 0, 0, 0};
+            c[point] = 1;
+            for (int level = 0; level < 3; ++level)
+                for (int i = 0; i < 3 - level; ++i) c[i] += (c[i + 1] - c[i]) * args[level];
+            m.w[k][point] = c[0];
+        }
+    }
+    return m;
+}
+
+void sub_patch_soa(const BezierPatch &patch, const IntervalMatrix &along_u,
+                   const IntervalMatrix &along_v, double x[16], double y[16], double z[16]) {
+    // Rows first: r[i][j] = sum_l u.w[j][l] P[i][l]; then columns: sum_k v.w[i][k] r[k][j].
+    double rx[16], ry[16], rz[16];
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+            double sx = 0, sy = 0, sz = 0;
+            for (int l = 0; l < 4; ++l) {
+                const Vec3 &p = patch.p[i * 4 + l];
+                sx += along_u.w[j][l] * p.x;
+                sy += along_u.w[j][l] * p.y;
+                sz += along_u.w[j][l] * p.z;
+            }
+            rx[i * 4 + j] = sx;
+            ry[i * 4 + j] = sy;
+            rz[i * 4 + j] = sz;
+        }
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+            double sx = 0, sy = 0, sz = 0;
+            for (int k = 0; k < 4; ++k) {
+                sx += along_v.w[i][k] * rx[k * 4 + j];
+                sy += along_v.w[i][k] * ry[k * 4 + j];
+                sz += along_v.w[i][k] * rz[k * 4 + j];
+            }
+            x[i * 4 + j] = sx;
+            y[i * 4 + j] = sy;
+            z[i * 4 + j] = sz;
+        }
+}
+
 Box3 control_bounds(const BezierPatch &patch) {
     Box3 box;
     for (const Vec3 &p : patch.p) box.extend(p);

@@ -82,6 +82,18 @@ void split_v(const BezierPatch &patch, double t, BezierPatch &left, BezierPatch 
 // extend beyond [0, 1] (the polynomial is extrapolated); u1 and v1 must be nonzero.
 BezierPatch sub_patch(const BezierPatch &patch, double u0, double u1, double v0, double v1);
 
+// The linear map taking a cubic's control points to those of its restriction to [a, b]
+// (reparametrised to [0, 1]): row k holds the weights of the blossom at (a^(3-k), b^k).
+struct IntervalMatrix {
+    double w[4][4];
+    static IntervalMatrix of(double a, double b);
+};
+
+// sub_patch through precomputed interval matrices (rows: v, columns: u), written as a
+// structure of arrays p[i * 4 + j]: the same patch up to rounding, at a third of the cost.
+void sub_patch_soa(const BezierPatch &patch, const IntervalMatrix &along_u,
+                   const IntervalMatrix &along_v, double x[16], double y[16], double z[16]);
+
 // Box of the control points, which contains the surface (convex hull property).
 Box3 control_bounds(const BezierPatch &patch);
 

@@ -3,7 +3,9 @@
 #include "geometry/patch_intersector.h"
 #include "scene/user_geometry.h"
 
+#include <algorithm>
 #include <cfloat>
+#include <cmath>
 
 namespace ppm {
 
@@ -11,21 +13,47 @@ namespace {
 
 // Sub-patches per patch edge come from the scene setting "patch_presplit" (EmbreeFrame).
 // Smaller sub-patches give Embree tighter boxes and leave the Krawczyk test less to prove,
-// more cost Embree callbacks and memory (one control grid each). On the teapot 12 (the
-// default) was the fastest on camera rays and about as fast as 4 on random ones, 24 only 3-5%
-// faster; 1 keeps little more than the patches (ppm-bench intersect, exact-presplit-N).
+// more cost Embree callbacks and memory (48 bytes of culling data each plus Embree's ~90
+// bytes). On the teapot 12 (the default) was the fastest on camera rays and about as fast as
+// 4 on random ones; 3 keeps the whole structure 1000x smaller than a 1M-triangle mesh
+// (ppm-bench intersect, exact-presplit-N).
+
+float round_down(double x) {
+    const float f = static_cast<float>(x);
+    return double(f) > x ? std::nextafter(f, -INFINITY) : f;
+}
+float round_up(double x) {
+    const float f = static_cast<float>(x);
+    return double(f) < x ? std::nextafter(f, INFINITY) : f;
+}
+
+Box3 box_of(const PatchGeometry::SubPatch &sub) {
+    return {{sub.lower[0], sub.lower[1], sub.lower[2]}, {sub.upper[0], sub.upper[1], sub.upper[2]}};
+}
+
+// Domain [u0, u1] x [v0, v1] of sub-patch (row, column) when each edge is cut in per_edge.
+struct Domain {
+    double u0, u1, v0, v1;
+};
+Domain domain_of(int row, int column, int per_edge) {
+    // The last boundary is exactly 1, not per_edge * step.
+    const double step = 1.0 / per_edge;
+    return {column * step, column + 1 == per_edge ? 1.0 : (column + 1) * step, row * step,
+            row + 1 == per_edge ? 1.0 : (row + 1) * step};
+}
 
 // Cheap rejection before the patch math: Embree only tested a float box. Clip the ray to
 // the sub-patch's box in double and check that the clipped segment reaches the slab between
 // the sub-patch's bounding planes. Both are padded by the tolerance and rounding.
 bool segment_misses(const PatchGeometry::SubPatch &sub, const RayQuery &query) {
-    const double size = sub.box.diagonal();
-    const double pad = query.tolerance + 1e-12 * (size + max_abs_component(sub.box.lower) +
-                                                  max_abs_component(sub.box.upper));
+    const Box3 box = box_of(sub);
+    const double size = box.diagonal();
+    const double pad = query.tolerance + 1e-12 * (size + max_abs_component(box.lower) +
+                                                  max_abs_component(box.upper));
     double t0 = query.tnear, t1 = query.hit.t;
     for (int axis = 0; axis < 3; ++axis) {
         const double o = query.org[axis], d = query.dir[axis];
-        const double lo = sub.box.lower[axis] - pad, hi = sub.box.upper[axis] + pad;
+        const double lo = box.lower[axis] - pad, hi = box.upper[axis] + pad;
         if (d == 0) {
             if (o < lo || o > hi) return true;
             continue;
@@ -36,8 +64,9 @@ bool segment_misses(const PatchGeometry::SubPatch &sub, const RayQuery &query) {
         t1 = std::min(t1, tb);
     }
     if (!(t0 <= t1)) return true;
-    const double d0 = dot(sub.normal, query.org + query.dir * t0);
-    const double d1 = dot(sub.normal, query.org + query.dir * t1);
+    const Vec3 normal{sub.normal[0], sub.normal[1], sub.normal[2]};
+    const double d0 = dot(normal, query.org + query.dir * t0);
+    const double d1 = dot(normal, query.org + query.dir * t1);
     return (d0 < sub.slab_lo - pad && d1 < sub.slab_lo - pad) ||
            (d0 > sub.slab_hi + pad && d1 > sub.slab_hi + pad);
 }
@@ -45,45 +74,62 @@ bool segment_misses(const PatchGeometry::SubPatch &sub, const RayQuery &query) {
 bool test_sub_patch(const PatchGeometry::Data &data, unsigned prim, RayQuery &query) {
     const PatchGeometry::SubPatch &sub = data.sub_patches[prim];
     if (segment_misses(sub, query)) return false;
+    const unsigned per_patch = unsigned(data.per_edge * data.per_edge);
+    const unsigned patch_index = prim / per_patch, within = prim % per_patch;
+    const int row = int(within) / data.per_edge, column = int(within) % data.per_edge;
+    const Domain d = domain_of(row, column, data.per_edge);
+    ControlGrid grid;
+    sub_patch_soa((*data.patches)[patch_index], data.intervals[column], data.intervals[row], grid.x,
+                  grid.y, grid.z);
+    grid.derivative_bound = sub.derivative_bound;
     PatchRootQuery patch_query;
     patch_query.tnear = query.tnear;
     patch_query.tfar = query.hit.t;
     patch_query.tolerance = query.tolerance;
     patch_query.any_hit = query.any_hit;
     PatchRoot root;
-    if (!intersect_patch(sub.grid, query.frame(), patch_query, root)) return false;
-    const double u = sub.u0 + root.a * (sub.u1 - sub.u0), v = sub.v0 + root.b * (sub.v1 - sub.v0);
-    query.record(root.t, std::clamp(u, 0.0, 1.0), std::clamp(v, 0.0, 1.0), sub.patch_index);
+    if (!intersect_patch(grid, query.frame(), patch_query, root)) return false;
+    const double u = d.u0 + root.a * (d.u1 - d.u0), v = d.v0 + root.b * (d.v1 - d.v0);
+    query.record(root.t, std::clamp(u, 0.0, 1.0), std::clamp(v, 0.0, 1.0), patch_index);
     return true;
 }
 
 void sub_patch_bounds(const RTCBoundsFunctionArguments *args) {
     const auto &data = *static_cast<const PatchGeometry::Data *>(args->geometryUserPtr);
-    write_embree_bounds(data.sub_patches[args->primID].box, data.frame, *args->bounds_o);
+    write_embree_bounds(box_of(data.sub_patches[args->primID]), data.frame, *args->bounds_o);
 }
 
-PatchGeometry::SubPatch make_sub_patch(const BezierPatch &patch, double u0, double u1, double v0,
-                                       double v1) {
-    const BezierPatch part = sub_patch(patch, u0, u1, v0, v1);
+PatchGeometry::SubPatch make_sub_patch(const BezierPatch &patch, const IntervalMatrix &along_u,
+                                       const IntervalMatrix &along_v) {
+    // The control points exactly as test_sub_patch will cut them.
+    ControlGrid grid;
+    sub_patch_soa(patch, along_u, along_v, grid.x, grid.y, grid.z);
+    BezierPatch part;
+    for (int k = 0; k < 16; ++k) part.p[k] = {grid.x[k], grid.y[k], grid.z[k]};
     PatchGeometry::SubPatch sub;
-    sub.grid = ControlGrid::from(part);
-    sub.box = control_bounds(part);
-    sub.u0 = u0;
-    sub.u1 = u1;
-    sub.v0 = v0;
-    sub.v1 = v1;
-    // Normal of the plane spanned by the mean chords; any direction gives a valid slab, this
-    // one a thin slab for a nearly flat part.
-    const Vec3 along_u = (part.at(0, 3) + part.at(3, 3)) - (part.at(0, 0) + part.at(3, 0));
-    const Vec3 along_v = (part.at(3, 0) + part.at(3, 3)) - (part.at(0, 0) + part.at(0, 3));
-    const Vec3 n = cross(along_u, along_v);
-    sub.normal = length(n) > 0 ? normalize(n) : Vec3{0, 0, 1};
-    sub.slab_lo = INFINITY;
-    sub.slab_hi = -INFINITY;
-    for (const Vec3 &p : part.p) {
-        sub.slab_lo = std::min(sub.slab_lo, dot(sub.normal, p));
-        sub.slab_hi = std::max(sub.slab_hi, dot(sub.normal, p));
+    const Box3 box = control_bounds(part);
+    for (int axis = 0; axis < 3; ++axis) {
+        sub.lower[axis] = round_down(box.lower[axis]);
+        sub.upper[axis] = round_up(box.upper[axis]);
     }
+    // Normal of the plane spanned by the mean chords; any direction gives a valid slab, this
+    // one a thin slab for a nearly flat part. The offsets are taken along the normal as
+    // stored, so rounding it costs nothing but a slightly other slab.
+    const Vec3 along_u_chord = (part.at(0, 3) + part.at(3, 3)) - (part.at(0, 0) + part.at(3, 0));
+    const Vec3 along_v_chord = (part.at(3, 0) + part.at(3, 3)) - (part.at(0, 0) + part.at(0, 3));
+    const Vec3 n = cross(along_u_chord, along_v_chord);
+    const Vec3 unit = length(n) > 0 ? normalize(n) : Vec3{0, 0, 1};
+    const float rounded[3] = {float(unit.x), float(unit.y), float(unit.z)};
+    const Vec3 normal{rounded[0], rounded[1], rounded[2]};
+    double lo = INFINITY, hi = -INFINITY;
+    for (const Vec3 &p : part.p) {
+        lo = std::min(lo, dot(normal, p));
+        hi = std::max(hi, dot(normal, p));
+    }
+    std::copy(rounded, rounded + 3, sub.normal);
+    sub.slab_lo = round_down(lo);
+    sub.slab_hi = round_up(hi);
+    sub.derivative_bound = round_up(grid.bound_derivatives());
     return sub;
 }
 
@@ -92,38 +138,49 @@ PatchGeometry::SubPatch make_sub_patch(const BezierPatch &patch, double u0, doub
 PatchGeometry::PatchGeometry(std::vector<BezierPatch> patches) : source_(std::move(patches)) {}
 
 Box3 PatchGeometry::prepare(const Affine &transform) {
-    world_ = source_;
+    // Under the identity the source patches are the world patches; a copy would double the
+    // memory of a patch set's geometry at small presplits.
+    bool identity = true;
+    for (int row = 0; row < 3; ++row)
+        for (int column = 0; column < 4; ++column)
+            identity = identity && transform.m[row][column] == (row == column ? 1.0 : 0.0);
+    world_.clear();
+    world_.shrink_to_fit();
+    if (!identity) {
+        world_ = source_;
+        for (BezierPatch &patch : world_)
+            for (Vec3 &p : patch.p) p = transform.point(p);
+    }
     scale_.clear();
     magnitude_.clear();
     Box3 bounds;
-    for (BezierPatch &patch : world_) {
+    for (const BezierPatch &patch : world_patches()) {
         double magnitude = 0;
-        for (Vec3 &p : patch.p) {
-            p = transform.point(p);
+        for (const Vec3 &p : patch.p) {
             bounds.extend(p);
             magnitude = std::max(magnitude, max_abs_component(p));
         }
         scale_.push_back(control_bounds(patch).diagonal());
         magnitude_.push_back(magnitude);
     }
-
     return bounds;
 }
 
 void PatchGeometry::split_patches(int per_edge) {
+    data_.intervals.clear();
+    for (int k = 0; k < per_edge; ++k) {
+        const Domain d = domain_of(k, k, per_edge);
+        data_.intervals.push_back(IntervalMatrix::of(d.u0, d.u1));
+    }
     data_.sub_patches.clear();
     data_.sub_patches.shrink_to_fit(); // a smaller presplit than last commit's frees memory
-    data_.sub_patches.reserve(world_.size() * per_edge * per_edge);
-    const double step = 1.0 / per_edge;
-    for (size_t index = 0; index < world_.size(); ++index)
-        for (int i = 0; i < per_edge; ++i)
-            for (int j = 0; j < per_edge; ++j) {
-                // The last boundary is exactly 1, not per_edge * step.
-                const double u0 = j * step, u1 = j + 1 == per_edge ? 1.0 : (j + 1) * step;
-                const double v0 = i * step, v1 = i + 1 == per_edge ? 1.0 : (i + 1) * step;
-                data_.sub_patches.push_back(make_sub_patch(world_[index], u0, u1, v0, v1));
-                data_.sub_patches.back().patch_index = static_cast<uint32_t>(index);
-            }
+    data_.sub_patches.reserve(world_patches().size() * per_edge * per_edge);
+    for (const BezierPatch &patch : world_patches())
+        for (int row = 0; row < per_edge; ++row)
+            for (int column = 0; column < per_edge; ++column)
+                data_.sub_patches.push_back(make_sub_patch(patch, data_.intervals[column], data_.intervals[row]));
+    data_.patches = &world_patches();
+    data_.per_edge = per_edge;
 }
 
 RTCGeometry PatchGeometry::create_embree(RTCDevice device, const EmbreeFrame &frame) {
@@ -135,7 +192,7 @@ RTCGeometry PatchGeometry::create_embree(RTCDevice device, const EmbreeFrame &fr
 
 void PatchGeometry::describe_hit(const RayQuery &query, double tolerance, ppm_hit &hit) const {
     const uint32_t index = query.hit.prim_id;
-    const BezierPatch &patch = world_[index];
+    const BezierPatch &patch = world_patches()[index];
     const SurfaceDerivatives d = evaluate_derivatives(patch, query.hit.u, query.hit.v);
     const Vec3 &p = d.p;
     const Vec3 n = geometric_normal(patch, query.hit.u, query.hit.v, scale_[index], d);

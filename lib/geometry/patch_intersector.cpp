@@ -29,17 +29,22 @@ ControlGrid ControlGrid::from(const BezierPatch &patch) {
         g.y[k] = patch.p[k].y;
         g.z[k] = patch.p[k].z;
     }
+    g.derivative_bound = g.bound_derivatives();
+    return g;
+}
+
+double ControlGrid::bound_derivatives() const {
     double du = 0, dv = 0;
     for (int i = 0; i < 4; ++i)
         for (int j = 0; j < 3; ++j) {
-            const Vec3 along_u = patch.at(i, j + 1) - patch.at(i, j);
-            const Vec3 along_v = patch.at(j + 1, i) - patch.at(j, i);
-            du = std::max(du, std::fabs(along_u.x) + std::fabs(along_u.y) + std::fabs(along_u.z));
-            dv = std::max(dv, std::fabs(along_v.x) + std::fabs(along_v.y) + std::fabs(along_v.z));
+            const int k = i * 4 + j, across = j * 4 + i; // (i, j) -> (i, j + 1); (j, i) -> (j + 1, i)
+            du = std::max(du, std::fabs(x[k + 1] - x[k]) + std::fabs(y[k + 1] - y[k]) +
+                                  std::fabs(z[k + 1] - z[k]));
+            dv = std::max(dv, std::fabs(x[across + 4] - x[across]) + std::fabs(y[across + 4] - y[across]) +
+                                  std::fabs(z[across + 4] - z[across]));
         }
     // The 1-norm is not rotation invariant; sqrt(3) covers any rotation of a 2-norm bound.
-    g.derivative_bound = 3.0 * std::sqrt(3.0) * std::max(du, dv);
-    return g;
+    return 3.0 * std::sqrt(3.0) * std::max(du, dv);
 }
 
 namespace {

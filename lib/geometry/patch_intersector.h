@@ -31,6 +31,8 @@ struct ControlGrid {
     // the derivative control points. Rotation invariant, so it holds in ray space too.
     double derivative_bound;
     static ControlGrid from(const BezierPatch &patch);
+    // derivative_bound of the points x, y, z.
+    double bound_derivatives() const;
 };
 
 struct PatchRootQuery {
