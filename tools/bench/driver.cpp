@@ -1,7 +1,7 @@
 #include "driver.h"
 
 #include "measure.h"
-#include "parallel.h"
+#include "timed_trace.h"
 
 #include <cmath>
 
@@ -10,37 +10,6 @@
 namespace bench {
 
 namespace {
-
-struct Timing {
-    double cpu = 0, wall = 0;
-    size_t rays = 0;
-};
-
-// Traces `rays` into `trace`, then again into a scratch trace until `min_seconds` of wall
-// time have passed, so fast methods on small sets are timed over enough work.
-Timing timed_trace(const Method &method, const std::vector<ppm_ray> &rays, int threads, double min_seconds,
-                   Trace &trace) {
-    auto once = [&](Trace &out) {
-        out.resize(rays.size());
-        if (method.threads_inside() || threads <= 1)
-            method.trace(rays, 0, rays.size(), out);
-        else
-            parallel_chunks(rays.size(), threads, 256,
-                            [&](size_t begin, size_t end) { method.trace(rays, begin, end, out); });
-    };
-    Timing timing;
-    Stopwatch clock;
-    once(trace);
-    timing.rays = rays.size();
-    Trace scratch;
-    while (clock.wall_seconds() < min_seconds && !rays.empty()) {
-        once(scratch);
-        timing.rays += rays.size();
-    }
-    timing.wall = clock.wall_seconds();
-    timing.cpu = clock.cpu_seconds();
-    return timing;
-}
 
 size_t mismatches(const Trace &a, const Trace &b) {
     size_t count = 0;

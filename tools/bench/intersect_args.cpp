@@ -1,10 +1,9 @@
 #include "intersect_args.h"
 
+#include "option_values.h"
+
 #include <algorithm>
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
-#include <sstream>
+#include <cstring>
 
 namespace bench {
 
@@ -12,35 +11,6 @@ namespace {
 
 const char *const known_sets[] = {"random", "camera", "grazing", "seams", "poles", "leaving"};
 const char *const known_methods[] = {"exact", "newton", "embree", "adaptive", "cgal"};
-
-bool parse_integer(const std::string &text, long long low, long long high, long long &out) {
-    if (text.empty()) return false;
-    char *end = nullptr;
-    errno = 0;
-    const long long value = std::strtoll(text.c_str(), &end, 10);
-    if (errno != 0 || *end != '\0' || value < low || value > high) return false;
-    out = value;
-    return true;
-}
-
-bool parse_double(const std::string &text, double low, double high, double &out) {
-    if (text.empty()) return false;
-    char *end = nullptr;
-    errno = 0;
-    const double value = std::strtod(text.c_str(), &end);
-    if (errno != 0 || *end != '\0' || !std::isfinite(value) || value < low || value > high) return false;
-    out = value;
-    return true;
-}
-
-std::vector<std::string> split(const std::string &text) {
-    std::vector<std::string> items;
-    std::istringstream in(text);
-    std::string item;
-    while (std::getline(in, item, ','))
-        if (!item.empty()) items.push_back(item);
-    return items;
-}
 
 bool bad(const std::string &option, const std::string &value, const char *expected) {
     std::fprintf(stderr, "ppm-bench intersect: %s '%s': expected %s\n", option.c_str(), value.c_str(),
@@ -51,21 +21,14 @@ bool bad(const std::string &option, const std::string &value, const char *expect
 // A comma-separated list of integers in [low, high]; "none" (or an empty value) for none.
 bool integer_list(const std::string &option, const std::string &value, long long low, long long high,
                   std::vector<int> &out, const char *expected) {
-    out.clear();
-    if (value == "none") return true;
-    for (const std::string &item : split(value)) {
-        long long n = 0;
-        if (!parse_integer(item, low, high, n)) return bad(option, value, expected);
-        out.push_back(int(n));
-    }
-    return true;
+    return parse_integer_list(value, low, high, out) || bad(option, value, expected);
 }
 
 bool double_list(const std::string &option, const std::string &value, double low, double high,
                  std::vector<double> &out, const char *expected) {
     out.clear();
     if (value == "none") return true;
-    for (const std::string &item : split(value)) {
+    for (const std::string &item : split_list(value)) {
         double x = 0;
         if (!parse_double(item, low, high, x)) return bad(option, value, expected);
         out.push_back(x);
@@ -76,7 +39,7 @@ bool double_list(const std::string &option, const std::string &value, double low
 template <size_t N>
 bool name_list(const std::string &option, const std::string &value, const char *const (&known)[N],
                std::vector<std::string> &out, const char *expected) {
-    out = split(value);
+    out = split_list(value);
     for (const std::string &name : out)
         if (std::find(std::begin(known), std::end(known), name) == std::end(known))
             return bad(option, value, expected);
@@ -204,15 +167,9 @@ void print_intersect_usage(std::FILE *out) {
 
 ParseResult parse_intersect_args(int argc, char **argv, int first, IntersectOptions &options) {
     for (int i = first; i < argc; ++i) {
-        std::string option = argv[i], value;
-        if (option == "-h" || option == "--help") return ParseResult::help;
-        const size_t equals = option.find('=');
-        if (equals != std::string::npos) {
-            value = option.substr(equals + 1);
-            option.resize(equals);
-        } else if (i + 1 < argc) {
-            value = argv[++i];
-        } else {
+        if (!std::strcmp(argv[i], "-h") || !std::strcmp(argv[i], "--help")) return ParseResult::help;
+        std::string option, value;
+        if (!read_option(argc, argv, i, option, value)) {
             std::fprintf(stderr, "ppm-bench intersect: %s needs a value\n", option.c_str());
             return ParseResult::error;
         }
