@@ -1,6 +1,7 @@
 // ppm-bench: benchmarks of libppm. Subcommands dispatch to their own files.
 #include "intersect_command.h"
 #include "render_command.h"
+#include "targets_command.h"
 
 #include <ppm/ppm.h>
 
@@ -16,6 +17,8 @@ void print_usage(std::FILE *out) {
                  "  intersect   speed against accuracy of patch intersection: libppm, naive Newton,\n"
                  "              Embree and CGAL on tessellations, against a long-double reference\n"
                  "  render      renderer speed: eye pass time, photon paths/s, memory\n"
+                 "  targets     the exact intersector's speed and memory targets against Embree and CGAL\n"
+                 "              on a uniform mesh, from medians of interleaved timing rounds\n"
                  "options:\n"
                  "  -h, --help  this text ('ppm-bench <command> -h' for a command's options)\n"
                  "  --version   print the libppm version\n");
@@ -39,6 +42,7 @@ int main(int argc, char **argv) {
     }
     if (!std::strcmp(command, "intersect")) return bench::run_intersect_command(argc, argv, 2);
     if (!std::strcmp(command, "render")) return bench::run_render_command(argc, argv, 2);
+    if (!std::strcmp(command, "targets")) return bench::run_targets_command(argc, argv, 2);
     std::fprintf(stderr, "ppm-bench: unknown command '%s'\n", command);
     print_usage(stderr);
     return 1;
