@@ -121,11 +121,11 @@ PPM_API void ppm_scene_release(ppm_scene scene);
  *   "patch_presplit"  Bezier patches only: each patch is cut into n x n sub-patches at
  *                commit, each with its own bounding box in the scene's BVH, so a ray tests
  *                only the few sub-patches near it. A whole number n in [1, 32], default 12.
- *                Memory against speed: every sub-patch keeps its control points and box
- *                (about 0.5 KiB), so the teapot's 32 patches (12 KiB of control points) take
- *                about 2.7 MB at 12 and 46 KB at 1 (the library's copies of the patches and a
- *                32-box BVH); at 1 rays cost about 1.8 (random) to 2.4 (camera) times as much
- *                as at 12, see README "Benchmarks". Accuracy does not depend on it.
+ *                Memory against speed: every sub-patch costs about 140 bytes (its culling
+ *                data and its share of the BVH), so the teapot's 32 patches (12 KiB of
+ *                control points) take 0.64 MiB at 12, 0.066 MiB at 3 and 0.030 MiB at 1; rays
+ *                cost about 1.3 (3) to 2.5 (1) times as much as at 12, see README
+ *                "Benchmarks". Accuracy does not depend on it.
  * A change takes effect at the next ppm_scene_commit.
  * Errors: INVALID_ARGUMENT (NULL, unknown key, value NaN or out of range). */
 PPM_API ppm_status ppm_scene_set_double(ppm_scene scene, const char *key, double value);
