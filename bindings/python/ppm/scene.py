@@ -138,6 +138,20 @@ class Scene(Handle):
         """Patches or triangles of a geometry; 1 for a sphere or quad."""
         return self._core_object.get_primitive_count(uint32(geom_id, "geom_id"))
 
+    @property
+    def geometry_count(self):
+        """Number of geometries; their ids are ``0 .. geometry_count - 1``."""
+        return self._core_object.get_geometry_count()
+
+    def bezier_patches(self, geom_id):
+        """World-space control points of a committed patch geometry, its transform applied:
+        float64 array ``(n, 16, 3)`` in the layout of :meth:`add_bezier_patches`.
+        Raises :class:`ppm.InvalidArgumentError` for a geometry that is not made of patches."""
+        count = self.primitive_count(geom_id)
+        out = np.empty((count, 16, 3), dtype=np.float64)
+        self._core_object.get_bezier_patches(uint32(geom_id, "geom_id"), out)
+        return out
+
     def commit(self):
         """Builds the acceleration structure; needed after any change, before queries."""
         self._core_object.commit()

@@ -17,6 +17,7 @@ using Indices = nanobind::ndarray<const uint32_t, nanobind::c_contig, nanobind::
 using Bytes = nanobind::ndarray<const uint8_t, nanobind::c_contig, nanobind::device::cpu>;
 using OutBytes = nanobind::ndarray<uint8_t, nanobind::c_contig, nanobind::device::cpu>;
 using OutFloats = nanobind::ndarray<float, nanobind::c_contig, nanobind::device::cpu>;
+using OutDoubles = nanobind::ndarray<double, nanobind::c_contig, nanobind::device::cpu>;
 
 // Number of groups of `group` elements in `a`; ValueError unless `a` holds a whole number.
 template <typename Array>

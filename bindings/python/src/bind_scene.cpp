@@ -94,6 +94,14 @@ void bind_scene(nb::module_ &m) {
         check(ppm_scene_get_primitive_count(s.get(), geom_id, &count));
         return count;
     });
+    cls.def("get_geometry_count", [](Scene &s) {
+        size_t count = 0;
+        check(ppm_scene_get_geometry_count(s.get(), &count));
+        return count;
+    });
+    cls.def("get_bezier_patches", [](Scene &s, uint32_t geom_id, OutDoubles out) {
+        check(ppm_scene_get_bezier_patches(s.get(), geom_id, out.data(), out.size()));
+    });
     // Building the acceleration structure of a large scene takes a while: no GIL.
     cls.def("commit", [](Scene &s) {
         auto scene = s.borrow();

@@ -211,3 +211,19 @@ def test_large_batch_on_worker_threads(teapot_points):
         ctx.threads = 1
         again = s.intersect(org[:1000], d[:1000])
         assert (hits.t[:1000] == again.t).all()
+
+
+def test_bezier_patches_come_back_in_world_space(scene, teapot_points):
+    points = teapot_points.reshape(-1, 16, 3)
+    sphere = scene.add_sphere((0, 0, 10), 1.0)
+    pot = scene.add_bezier_patches(points)
+    m = np.array([[0, -2, 0, 1], [2, 0, 0, -3], [0, 0, 2, 0.5], [0, 0, 0, 1]], dtype=float)
+    scene.set_transform(pot, m)
+    scene.commit()
+    assert scene.geometry_count == 2
+    world = scene.bezier_patches(pot)
+    assert world.shape == (len(points), 16, 3) and world.dtype == np.float64
+    expected = points @ m[:3, :3].T + m[:3, 3]
+    np.testing.assert_allclose(world, expected, rtol=0, atol=1e-12)
+    with pytest.raises(ppm.InvalidArgumentError, match="patch"):
+        scene.bezier_patches(sphere)
