@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <limits>
 #include <new>
+#include <tbb/task_arena.h>
 #include <utility>
 #include <vector>
 
@@ -246,6 +247,35 @@ void duplicates_are_each_found_once(void **) {
     assert_int_equal(check_against_brute_force(spread, at_points), 201);
 }
 
+// Enough points for the tree to cut them into parts (one per thread of the arena, up to 4 here):
+// photons near and across the median planes find the points of every part they reach.
+void tree_in_parts_matches_brute_force(void **) {
+    test_rng rng{16};
+    std::vector<HitPoint> points;
+    for (int i = 0; i < 300000; ++i) {
+        const double r = 0.01 + 0.04 * test_rng_uniform(&rng);
+        points.push_back(hit_point(random_in_box(rng, {-1, -1, -1}, {1, 1, 1}), r * r));
+    }
+    std::vector<Vec3> photons;
+    for (int i = 0; i < 400; ++i) photons.push_back(random_in_box(rng, {-1.05, -1.05, -1.05}, {1.05, 1.05, 1.05}));
+    for (int i = 0; i < 200; ++i) photons.push_back(random_in_box(rng, {-0.03, -1, -1}, {0.03, 1, 1})); // x median
+    for (int i = 0; i < 200; ++i) photons.push_back(points[i * 997].position);
+    tbb::task_arena arena(4);
+    std::size_t pairs = 0;
+    arena.execute([&] {
+        HitPointTree tree;
+        tree.build(points.data(), points.size());
+        assert_int_equal(tree.size(), points.size());
+        for (const Vec3 &photon : photons) {
+            const Found expected = brute_force(points, photon);
+            assert_same(expected, search(tree, photon));
+            pairs += expected.size();
+        }
+    });
+    print_message("%zu (photon, hit point) pairs\n", pairs);
+    assert_true(pairs > 1000);
+}
+
 void rebuild_replaces_the_points(void **) {
     const std::vector<HitPoint> first = {hit_point({0, 0, 0}, 1), hit_point({5, 0, 0}, 1)};
     const std::vector<HitPoint> second = {hit_point({10, 0, 0}, 4)};
@@ -312,6 +342,7 @@ int main(void) {
         cmocka_unit_test(empty_structures_find_nothing),
         cmocka_unit_test(one_point),
         cmocka_unit_test(duplicates_are_each_found_once),
+        cmocka_unit_test(tree_in_parts_matches_brute_force),
         cmocka_unit_test(rebuild_replaces_the_points),
         cmocka_unit_test(non_finite_photons_find_nothing),
         cmocka_unit_test(queries_do_not_allocate),

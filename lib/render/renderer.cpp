@@ -85,7 +85,8 @@ void Renderer::build_search() {
     if (settings_.search == RenderSettings::Search::Grid)
         grid_.build(hit_points_.data(), hit_points_.size());
     else
-        tree_.build(hit_points_.data(), hit_points_.size());
+        // In the context's arena: the tree builds its parts on the context's workers.
+        scene_->context().run([&] { tree_.build(hit_points_.data(), hit_points_.size()); });
 }
 
 void Renderer::commit_pass() {
