@@ -808,6 +808,74 @@ static void test_spawn_from_inside_sphere_hit(void **state) {
     assert_miss(trace(f->scene, spawn(&hit, 0, 1, 0)));
 }
 
+
+/* Nearest root t > 0 of a unit-direction ray and a sphere, in the cancellation-free form. */
+static double sphere_root(const double o[3], const double d[3], const double c[3], double r) {
+    double f[3], l[3];
+    for (int k = 0; k < 3; ++k) f[k] = o[k] - c[k];
+    const double b = f[0] * d[0] + f[1] * d[1] + f[2] * d[2];
+    for (int k = 0; k < 3; ++k) l[k] = f[k] - d[k] * b;
+    const double disc = r * r - (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+    if (disc < 0) return INFINITY;
+    const double q = -(b + copysign(sqrt(disc), b));
+    const double cc = f[0] * f[0] + f[1] * f[1] + f[2] * f[2] - r * r;
+    double t0 = q, t1 = q != 0 ? cc / q : q;
+    if (t0 > t1) { const double s = t0; t0 = t1; t1 = s; }
+    return t0 > 0 ? t0 : (t1 > 0 ? t1 : INFINITY);
+}
+
+/* Hachisuka's smallppm box: walls are spheres of radius 1e5, whose boxes hold the whole scene
+ * (the library tests such spheres outside its BVH), plus three small spheres inside. Random
+ * rays from inside the room must find the nearest sphere, as brute force does. */
+static void test_huge_wall_spheres_and_small_ones(void **state) {
+    fixture *f = *state;
+    const double spheres[9][4] = {
+        {1e5 + 1, 40.8, 81.6, 1e5},  {-1e5 + 99, 40.8, 81.6, 1e5}, {50, 40.8, 1e5, 1e5},
+        {50, 40.8, -1e5 + 170, 1e5}, {50, 1e5, 81.6, 1e5},        {50, -1e5 + 81.6, 81.6, 1e5},
+        {27, 16.5, 47, 16.5},        {73, 16.5, 88, 16.5},         {50, 8.5, 60, 8.5}};
+    for (int s = 0; s < 9; ++s) add_sphere(f->scene, spheres[s][0], spheres[s][1], spheres[s][2], spheres[s][3]);
+    commit(f->scene);
+    test_rng rng = {21};
+    for (int i = 0; i < 3000; ++i) {
+        const double o[3] = {5 + 90 * test_rng_uniform(&rng), 35 + 40 * test_rng_uniform(&rng),
+                             110 + 55 * test_rng_uniform(&rng)};
+        double d[3] = {test_rng_uniform(&rng) - 0.5, test_rng_uniform(&rng) - 0.5, test_rng_uniform(&rng) - 0.5};
+        const double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        for (int k = 0; k < 3; ++k) d[k] /= len;
+        double best = INFINITY;
+        int nearest = -1;
+        for (int s = 0; s < 9; ++s) {
+            const double t = sphere_root(o, d, spheres[s], spheres[s][3]);
+            if (t < best) { best = t; nearest = s; }
+        }
+        const ppm_hit hit = trace(f->scene, make_ray(o[0], o[1], o[2], d[0], d[1], d[2]));
+        assert_int_equal(nearest >= 0, 1); /* the room is closed */
+        assert_int_equal(hit.geom_id, (uint32_t)nearest);
+        assert_close(hit.t, best, 1e-6);
+        /* A shadow ray stopping short of the nearest surface sees nothing. */
+        ppm_ray shorter = make_ray(o[0], o[1], o[2], d[0], d[1], d[2]);
+        shorter.tfar = 0.99 * best;
+        assert_miss(trace(f->scene, shorter));
+    }
+}
+
+/* Twelve nested spheres, all with boxes holding most of the scene's: more than the library
+ * tests outside its BVH, so the smaller ones stay in it. The nearest is found either way. */
+static void test_many_nested_big_spheres(void **state) {
+    fixture *f = *state;
+    for (int s = 0; s < 12; ++s) add_sphere(f->scene, 0, 0, 0, 1000 * (12 - s)); /* id 11: radius 1000 */
+    commit(f->scene);
+    const ppm_hit inside = trace(f->scene, make_ray(0, 0, 0, 0.6, 0, 0.8));
+    assert_int_equal(inside.geom_id, 11);
+    assert_close(inside.t, 1000, 1e-9);
+    const ppm_hit between = trace(f->scene, make_ray(0, 0, 7500, 0, 0, 1)); /* inside radius 8000 */
+    assert_int_equal(between.geom_id, 4);
+    assert_close(between.t, 500, 1e-9);
+    const ppm_hit outside = trace(f->scene, make_ray(0, 0, -20000, 0, 0, 1));
+    assert_int_equal(outside.geom_id, 0);
+    assert_close(outside.t, 8000, 1e-9);
+}
+
 #define TEST(name) cmocka_unit_test_setup_teardown(name, scene_fixture_setup, scene_fixture_teardown)
 
 int main(void) {
@@ -822,6 +890,8 @@ int main(void) {
         TEST(test_sphere_uv_poles_and_general_point),
         TEST(test_sphere_uv_of_offset_sphere),
         TEST(test_sphere_tnear_tfar),
+        TEST(test_huge_wall_spheres_and_small_ones),
+        TEST(test_many_nested_big_spheres),
         TEST(test_quad_hit_inside),
         TEST(test_quad_miss_outside),
         TEST(test_quad_edges_and_corners_hit),

@@ -67,6 +67,8 @@ Box3 SphereGeometry::prepare(const Affine &transform) {
     return box;
 }
 
+bool SphereGeometry::test(const Data &data, RayQuery &query) { return test_sphere(data, 0, query); }
+
 RTCGeometry SphereGeometry::create_embree(RTCDevice device, const EmbreeFrame &frame) {
     data_.frame = frame;
     return new_user_geometry<Data, test_sphere>(device, data_, 1, sphere_bounds);

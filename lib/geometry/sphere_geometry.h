@@ -25,6 +25,10 @@ public:
 
     const Data &data() const { return data_; } // world space, valid after commit
 
+    // The hit test Embree's callbacks run, for callers that test the sphere themselves: a hit
+    // with t in [query.tnear, query.hit.t] is recorded (any hit when query.any_hit).
+    static bool test(const Data &data, RayQuery &query);
+
 private:
     Vec3 source_center_;
     double source_radius_;

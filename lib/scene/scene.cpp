@@ -1,10 +1,12 @@
 #include "scene/scene.h"
 
 #include "core/error.h"
+#include "geometry/sphere_geometry.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <cstring>
@@ -12,6 +14,29 @@
 namespace ppm {
 
 namespace {
+
+// The spheres that stay out of the BVH (see Scene::direct_spheres_): those whose box takes at
+// least 1/64 of the scene box's volume (a box wider than a quarter of the scene's on every
+// axis), at most 8 of them, the largest first. A BVH cannot cull such a box, and in it the box
+// would widen the nodes above everything else.
+std::vector<uint32_t> spheres_tested_directly(const std::vector<std::unique_ptr<Geometry>> &geometries,
+                                              const Box3 &scene_box) {
+    constexpr double min_volume_fraction = 1.0 / 64;
+    constexpr size_t max_direct = 8;
+    const Vec3 extent = scene_box.upper - scene_box.lower;
+    const double scene_volume = extent.x * extent.y * extent.z;
+    std::vector<std::pair<double, uint32_t>> big;
+    for (size_t id = 0; id < geometries.size(); ++id) {
+        const auto *sphere = dynamic_cast<const SphereGeometry *>(geometries[id].get());
+        if (!sphere) continue;
+        const double side = 2 * sphere->data().radius, volume = side * side * side;
+        if (volume >= min_volume_fraction * scene_volume) big.push_back({volume, static_cast<uint32_t>(id)});
+    }
+    std::sort(big.begin(), big.end(), [](const auto &a, const auto &b) { return a.first > b.first; });
+    std::vector<uint32_t> ids;
+    for (size_t k = 0; k < big.size() && k < max_direct; ++k) ids.push_back(big[k].second);
+    return ids;
+}
 
 // Batches smaller than this are traced on the calling thread: waking workers costs more.
 constexpr size_t parallel_batch_threshold = 256;
@@ -125,7 +150,9 @@ void Scene::commit() {
     rtcSetSceneFlags(rtc, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(rtc, RTC_BUILD_QUALITY_HIGH);
     try {
+        direct_spheres_ = spheres_tested_directly(geometries_, bounds);
         for (size_t id = 0; id < geometries_.size(); ++id) {
+            if (std::find(direct_spheres_.begin(), direct_spheres_.end(), id) != direct_spheres_.end()) continue;
             RTCGeometry g = geometries_[id]->create_embree(device, frame_);
             context_->check_embree("creating Embree geometry");
             if (!g) fail(PPM_ERROR_OUT_OF_MEMORY, "creating Embree geometry failed");
@@ -205,6 +232,12 @@ void Scene::intersect(const ppm_ray &ray, ppm_hit &hit) const {
     rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    // The big spheres first: a hit there shortens the ray Embree traverses.
+    for (uint32_t id : direct_spheres_)
+        if (SphereGeometry::test(static_cast<const SphereGeometry &>(*geometries_[id]).data(), query)) {
+            query.hit.geom_id = id;
+            rayhit.ray.tfar = std::min(rayhit.ray.tfar, query.embree_tfar(query.hit.t));
+        }
     rtcIntersect1(rtc_scene_, &query.embree, &rayhit);
     if (!query.found) return write_miss(hit);
 
@@ -223,6 +256,8 @@ bool Scene::occluded(const ppm_ray &ray) const {
     RayQuery query;
     RTCRay embree_ray;
     if (!start_query(ray, true, query, embree_ray)) return false;
+    for (uint32_t id : direct_spheres_)
+        if (SphereGeometry::test(static_cast<const SphereGeometry &>(*geometries_[id]).data(), query)) return true;
     rtcOccluded1(rtc_scene_, &query.embree, &embree_ray);
     return query.found;
 }

@@ -66,6 +66,11 @@ private:
     double tolerance_ = 1e-9;
     int patch_presplit_ = EmbreeFrame{}.patch_presplit;
 
+    // Spheres whose box holds much of the scene's (Hachisuka's walls of radius 1e5): every ray
+    // overlaps them, so they stay out of the BVH, where their boxes would hide everything else
+    // from the culling, and every query tests them directly.
+    std::vector<uint32_t> direct_spheres_;
+
     RTCScene rtc_scene_ = nullptr;
     bool committed_ = false;
     Box3 bounds_;
