@@ -166,15 +166,11 @@ void print_intersect_usage(std::FILE *out) {
 }
 
 ParseResult parse_intersect_args(int argc, char **argv, int first, IntersectOptions &options) {
-    for (int i = first; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "-h") || !std::strcmp(argv[i], "--help")) return ParseResult::help;
-        std::string option, value;
-        if (!read_option(argc, argv, i, option, value)) {
-            std::fprintf(stderr, "ppm-bench intersect: %s needs a value\n", option.c_str());
-            return ParseResult::error;
-        }
-        if (!apply(option, value, options)) return ParseResult::error;
-    }
+    const ParseResult read = read_options("ppm-bench intersect", argc, argv, first, [&](const std::string &option,
+                                                                          const std::string &value) {
+        return apply(option, value, options);
+    });
+    if (read != ParseResult::run) return read;
     if ((options.width == 0) != (options.height == 0)) {
         std::fprintf(stderr, "ppm-bench intersect: --width and --height must both be 0 or both positive\n");
         return ParseResult::error;

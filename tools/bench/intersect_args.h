@@ -1,6 +1,8 @@
 // Command line of `ppm-bench intersect`.
 #pragma once
 
+#include "option_values.h" // ParseResult
+
 #include <cstdint>
 #include <cstdio>
 #include <string>
@@ -36,7 +38,6 @@ struct IntersectOptions {
     bool has_set(const std::string &name) const;
 };
 
-enum class ParseResult { run, help, error };
 
 // Parses argv[first..argc). On error prints the reason to stderr.
 ParseResult parse_intersect_args(int argc, char **argv, int first, IntersectOptions &options);

@@ -2,6 +2,8 @@
 // only if all of it parses and lies in the stated range, so "--rays 2k" is an error, not 2.
 #pragma once
 
+#include <cstdio>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -19,5 +21,24 @@ bool parse_integer_list(const std::string &text, long long low, long long high, 
 // Reads the option at argv[i] and its value, written "--name=value" or "--name value" (then i
 // moves past the value). False if the value is missing.
 bool read_option(int argc, char **argv, int &i, std::string &option, std::string &value);
+
+enum class ParseResult { run, help, error };
+
+// Reads every option from argv[first] on, handing each to apply(option, value), which
+// reports its own errors and returns false on one. -h or --help ends the reading with
+// `help`; a missing value is reported as "<command>: <option> needs a value".
+template <class Apply>
+ParseResult read_options(const char *command, int argc, char **argv, int first, Apply &&apply) {
+    for (int i = first; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "-h") || !std::strcmp(argv[i], "--help")) return ParseResult::help;
+        std::string option, value;
+        if (!read_option(argc, argv, i, option, value)) {
+            std::fprintf(stderr, "%s: %s needs a value\n", command, option.c_str());
+            return ParseResult::error;
+        }
+        if (!apply(option, value)) return ParseResult::error;
+    }
+    return ParseResult::run;
+}
 
 } // namespace bench

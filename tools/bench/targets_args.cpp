@@ -88,15 +88,11 @@ void print_targets_usage(std::FILE *out) {
 }
 
 ParseResult parse_targets_args(int argc, char **argv, int first, TargetsOptions &options) {
-    for (int i = first; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "-h") || !std::strcmp(argv[i], "--help")) return ParseResult::help;
-        std::string option, value;
-        if (!read_option(argc, argv, i, option, value)) {
-            std::fprintf(stderr, "ppm-bench targets: %s needs a value\n", option.c_str());
-            return ParseResult::error;
-        }
-        if (!apply(option, value, options)) return ParseResult::error;
-    }
+    const ParseResult read = read_options("ppm-bench targets", argc, argv, first, [&](const std::string &option,
+                                                                          const std::string &value) {
+        return apply(option, value, options);
+    });
+    if (read != ParseResult::run) return read;
     if ((options.width == 0) != (options.height == 0)) {
         std::fprintf(stderr, "ppm-bench targets: --width and --height must both be 0 or both positive\n");
         return ParseResult::error;

@@ -1,7 +1,7 @@
 // Command line of `ppm-bench targets`.
 #pragma once
 
-#include "intersect_args.h" // ParseResult
+#include "option_values.h" // ParseResult
 
 #include <cstdint>
 #include <cstdio>
