@@ -324,6 +324,29 @@ static void same_seed_same_image_any_thread_count(void **state) {
     for (int k = 0; k < 3; ++k) free(images[k]);
 }
 
+/* 512 x 256 visible points: enough for the hit-point tree to be cut into one part per thread
+ * (parts of 64k points or more), so the two thread counts search differently built trees. */
+static void same_image_whatever_the_search_parts(void **state) {
+    scene_fixture *f = *state;
+    build_furnace(f->scene, 0.6, 1.0, 1);
+    const double origin[3] = {0, 0, -0.8}, target[3] = {0, 0, 1};
+    enum { width = 512, height = 256 };
+    float *images[2];
+    for (int k = 0; k < 2; ++k) {
+        assert_ppm_ok(ppm_context_set_int(f->context, "threads", k + 1));
+        ppm_renderer r = make_renderer(f->scene, origin, target, 70, width, height);
+        assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", 20000));
+        image im = render(r, 2);
+        images[k] = im.rgb;
+        ppm_renderer_release(r);
+    }
+    assert_memory_equal(images[0], images[1], sizeof(float) * 3 * width * height);
+    double sum = 0;
+    for (int i = 0; i < 3 * width * height; ++i) sum += images[0][i];
+    assert_true(sum > 0);
+    for (int k = 0; k < 2; ++k) free(images[k]);
+}
+
 static void cancel_discards_the_pass(void **state) {
     scene_fixture *f = *state;
     build_furnace(f->scene, 0.5, 1.0, 0);
@@ -456,6 +479,8 @@ int main(void) {
                                         scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(spot_light_beam_and_cutoff, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(photons_agree_with_shadow_rays_for_two_lights, scene_fixture_setup,
+                                        scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(same_image_whatever_the_search_parts, scene_fixture_setup,
                                         scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(same_seed_same_image_any_thread_count, scene_fixture_setup,
                                         scene_fixture_teardown),
