@@ -247,8 +247,9 @@ void duplicates_are_each_found_once(void **) {
     assert_int_equal(check_against_brute_force(spread, at_points), 201);
 }
 
-// Enough points for the tree to cut them into parts (one per thread of the arena, up to 4 here):
-// photons near and across the median planes find the points of every part they reach.
+// Enough points for the tree to cut them into parts (4 here, of 64k points or more), built on
+// the two threads of an arena: photons near and across the median planes find the points of
+// every part they reach.
 void tree_in_parts_matches_brute_force(void **) {
     test_rng rng{16};
     std::vector<HitPoint> points;
@@ -260,7 +261,7 @@ void tree_in_parts_matches_brute_force(void **) {
     for (int i = 0; i < 400; ++i) photons.push_back(random_in_box(rng, {-1.05, -1.05, -1.05}, {1.05, 1.05, 1.05}));
     for (int i = 0; i < 200; ++i) photons.push_back(random_in_box(rng, {-0.03, -1, -1}, {0.03, 1, 1})); // x median
     for (int i = 0; i < 200; ++i) photons.push_back(points[i * 997].position);
-    tbb::task_arena arena(4);
+    tbb::task_arena arena(2);
     std::size_t pairs = 0;
     arena.execute([&] {
         HitPointTree tree;

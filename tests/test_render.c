@@ -324,9 +324,9 @@ static void same_seed_same_image_any_thread_count(void **state) {
     for (int k = 0; k < 3; ++k) free(images[k]);
 }
 
-/* 512 x 256 visible points: enough for the hit-point tree to be cut into one part per thread
- * (parts of 64k points or more), so the two thread counts search differently built trees. */
-static void same_image_whatever_the_search_parts(void **state) {
+/* 512 x 256 visible points: enough for the hit-point tree to be cut into parts (of 64k
+ * points or more), built and searched on one thread and on two. */
+static void same_image_with_the_search_in_parts(void **state) {
     scene_fixture *f = *state;
     build_furnace(f->scene, 0.6, 1.0, 1);
     const double origin[3] = {0, 0, -0.8}, target[3] = {0, 0, 1};
@@ -480,7 +480,7 @@ int main(void) {
         cmocka_unit_test_setup_teardown(spot_light_beam_and_cutoff, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(photons_agree_with_shadow_rays_for_two_lights, scene_fixture_setup,
                                         scene_fixture_teardown),
-        cmocka_unit_test_setup_teardown(same_image_whatever_the_search_parts, scene_fixture_setup,
+        cmocka_unit_test_setup_teardown(same_image_with_the_search_in_parts, scene_fixture_setup,
                                         scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(same_seed_same_image_any_thread_count, scene_fixture_setup,
                                         scene_fixture_teardown),

@@ -2,7 +2,6 @@
 
 #include <nanoflann.hpp>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <numeric>
@@ -67,8 +66,8 @@ private:
 
 // nanoflann 1.4 builds a tree on one thread, and on a 1024 x 768 view that took a quarter of
 // the eye pass. The points are cut into parts by median splits along the longest axis, one
-// tree per part, built in parallel; a query visits the parts whose box, grown by the search
-// radius, holds the photon (mostly one: the cuts are planes through the scene).
+// tree per part, built in parallel; a query visits the parts whose box, grown by the part's
+// search radius, holds the photon (mostly one: the cuts are planes through the scene).
 constexpr std::size_t kMinPointsPerPart = 1 << 16;
 constexpr int kMaxParts = 8;
 
@@ -79,13 +78,26 @@ struct Part {
               nanoflann::KDTreeSingleIndexAdaptorParams(
                   kLeafSize, nanoflann::KDTreeSingleIndexAdaptorFlags::SkipInitialBuildIndex)};
     Vec3 lower, upper; // bounds of the part's points
+    double search_r2;  // search_radius2 of the part's largest r2
 };
 
-// Parts for `count` points: a power of two, up to the threads of the current task arena.
+// nanoflann keeps points with dist2 < search_r2 (strictly) and prunes subtrees with a lower
+// bound that is updated incrementally and may round up by a few ulps. Searching a hair beyond
+// the largest r2 keeps every point at exactly its radius; the final test is within_radius()
+// against each point's own r2. Each part searches with its own largest radius: where the
+// radii differ across the scene (a glass object magnifies the footprint of what is seen
+// through it), most photons search a smaller ball.
+double search_radius2(double max_r2) {
+    return std::nextafter(max_r2 * (1.0 + 1e-9), std::numeric_limits<double>::infinity());
+}
+
+// Parts for `count` points: a power of two, as many as keep kMinPointsPerPart points each, up
+// to kMaxParts. Not tied to the thread count, so every thread count searches the same parts
+// (a photon finds the same hit points in any case); more parts than threads also give each
+// part its own, often smaller, search radius.
 int part_count(std::size_t count) {
-    const int threads = tbb::this_task_arena::max_concurrency();
     int parts = 1;
-    while (parts < threads && parts < kMaxParts && count / (2 * parts) >= kMinPointsPerPart) parts *= 2;
+    while (parts < kMaxParts && count / (2 * parts) >= kMinPointsPerPart) parts *= 2;
     return parts;
 }
 
@@ -116,11 +128,6 @@ struct HitPointTree::Impl {
     std::vector<std::uint32_t> order; // reused between builds
     std::size_t size = 0;
     double max_r2 = 0;
-    // nanoflann keeps points with dist2 < search_r2 (strictly) and prunes subtrees with a
-    // lower bound that is updated incrementally and may round up by a few ulps. Searching a
-    // hair beyond the largest r2 keeps every point at exactly its radius; the final test is
-    // within_radius() against each point's own r2.
-    double search_r2 = 0;
 };
 
 HitPointTree::HitPointTree() : impl_(std::make_unique<Impl>()) {}
@@ -133,7 +140,6 @@ void HitPointTree::build(const HitPoint *points, std::size_t count) {
     m.size = count;
     m.max_r2 = 0;
     for (std::size_t i = 0; i < count; ++i) m.max_r2 = std::max(m.max_r2, points[i].r2);
-    m.search_r2 = std::nextafter(m.max_r2 * (1.0 + 1e-9), std::numeric_limits<double>::infinity());
 
     const int parts = part_count(count);
     m.order.resize(count);
@@ -148,13 +154,16 @@ void HitPointTree::build(const HitPoint *points, std::size_t count) {
         const std::size_t begin = k == 0 ? 0 : ends[k - 1], end = ends[k];
         part.cloud.entries.resize(end - begin);
         Box3 box;
+        double max_r2 = 0;
         for (std::size_t i = begin; i < end; ++i) {
             const HitPoint &h = points[m.order[i]];
             part.cloud.entries[i - begin] = {{h.position.x, h.position.y, h.position.z}, h.r2, m.order[i]};
             box.extend(h.position);
+            max_r2 = std::max(max_r2, h.r2);
         }
         part.lower = box.lower;
         part.upper = box.upper;
+        part.search_r2 = search_radius2(max_r2);
         part.tree.buildIndex();
     });
 }
@@ -175,8 +184,8 @@ void HitPointTree::query(const Vec3 &photon, HitPointVisitor visit) const {
             const double d = std::max({part->lower[axis] - p[axis], p[axis] - part->upper[axis], 0.0});
             outside2 += d * d;
         }
-        if (outside2 > m.search_r2) continue;
-        VisitWithinRadius result(part->cloud.entries.data(), photon, m.search_r2, visit);
+        if (outside2 > part->search_r2) continue;
+        VisitWithinRadius result(part->cloud.entries.data(), photon, part->search_r2, visit);
         part->tree.findNeighbors(result, p, nanoflann::SearchParams());
     }
 }

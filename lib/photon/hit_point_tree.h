@@ -1,7 +1,7 @@
 // KD-tree over the hit points of one pass, answering "which hit points contain this photon?".
 // nanoflann 1.4.3 builds and walks the tree; this header keeps it out of the rest of the
 // library (it is a large header, and its pre-1.5 API differs from later releases). Large sets
-// are cut into a few parts by median planes, one nanoflann tree each, built in parallel on
+// are cut into up to 8 parts by median planes, one nanoflann tree each, built in parallel on
 // the calling task arena's threads.
 //
 // Each hit point has its own radius, so a query searches the ball of the LARGEST radius and
