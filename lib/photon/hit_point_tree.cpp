@@ -1,10 +1,11 @@
 #include "photon/hit_point_tree.h"
 
 #include <nanoflann.hpp>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
-#include <numeric>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -20,11 +21,12 @@ struct Entry {
     std::uint32_t index; // into the array the tree was built from
 };
 
-// nanoflann's dataset interface over the packed entries.
+// nanoflann's dataset interface over a run of packed entries (a part's).
 struct EntryCloud {
-    std::vector<Entry> entries;
+    const Entry *entries = nullptr;
+    std::size_t count = 0;
 
-    std::size_t kdtree_get_point_count() const { return entries.size(); }
+    std::size_t kdtree_get_point_count() const { return count; }
     double kdtree_get_pt(std::uint32_t i, std::size_t dim) const { return entries[i].p[dim]; }
     template <class BBox>
     bool kdtree_get_bbox(BBox &) const { return false; }
@@ -101,31 +103,41 @@ int part_count(std::size_t count) {
     return parts;
 }
 
-// Reorders order[begin, end) into `parts` ranges of about equal size, each on one side of the
-// median of the range's longest axis; appends the ranges' ends to `ends`.
-void split(const HitPoint *points, std::uint32_t *order, std::size_t begin, std::size_t end, int parts,
-           std::vector<std::size_t> &ends) {
-    if (parts == 1) {
-        ends.push_back(end);
+// Reorders [begin, end) into `parts` runs (parts[0, count)), each on one side of a plane
+// across the run's longest axis at about its median; the two sides are cut further in
+// parallel. The plane comes from a sample, and one streaming partition moves the entries:
+// an exact nth_element took as long as building the trees.
+void split(Entry *begin, Entry *end, int count, std::pair<Entry *, Entry *> *parts) {
+    if (count == 1) {
+        parts[0] = {begin, end};
         return;
     }
+    constexpr std::size_t samples = 1024;
+    const std::size_t size = static_cast<std::size_t>(end - begin), step = std::max<std::size_t>(1, size / samples);
     Box3 box;
-    for (std::size_t k = begin; k < end; ++k) box.extend(points[order[k]].position);
+    for (std::size_t k = 0; k < size; k += step) box.extend({begin[k].p[0], begin[k].p[1], begin[k].p[2]});
     const Vec3 extent = box.upper - box.lower;
     const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-    const std::size_t middle = begin + (end - begin) / 2;
-    std::nth_element(order + begin, order + middle, order + end, [&](std::uint32_t a, std::uint32_t b) {
-        return points[a].position[axis] < points[b].position[axis];
-    });
-    split(points, order, begin, middle, parts / 2, ends);
-    split(points, order, middle, end, parts / 2, ends);
+    std::vector<double> sample;
+    for (std::size_t k = 0; k < size; k += step) sample.push_back(begin[k].p[axis]);
+    std::nth_element(sample.begin(), sample.begin() + sample.size() / 2, sample.end());
+    const double plane = sample[sample.size() / 2];
+    Entry *middle = std::partition(begin, end, [&](const Entry &e) { return e.p[axis] < plane; });
+    // A plane with (nearly) everything on one side, as when many points share the median
+    // coordinate: halve by count instead.
+    if (middle - begin < static_cast<std::ptrdiff_t>(size / 8) || end - middle < static_cast<std::ptrdiff_t>(size / 8)) {
+        middle = begin + size / 2;
+        std::nth_element(begin, middle, end, [&](const Entry &a, const Entry &b) { return a.p[axis] < b.p[axis]; });
+    }
+    tbb::parallel_invoke([&] { split(begin, middle, count / 2, parts); },
+                         [&] { split(middle, end, count / 2, parts + count / 2); });
 }
 
 } // namespace
 
 struct HitPointTree::Impl {
     std::vector<std::unique_ptr<Part>> parts;
-    std::vector<std::uint32_t> order; // reused between builds
+    std::vector<Entry> entries; // every point, each part's a run of them
     std::size_t size = 0;
     double max_r2 = 0;
 };
@@ -141,25 +153,28 @@ void HitPointTree::build(const HitPoint *points, std::size_t count) {
     m.max_r2 = 0;
     for (std::size_t i = 0; i < count; ++i) m.max_r2 = std::max(m.max_r2, points[i].r2);
 
+    m.entries.resize(count);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 16384), [&](const auto &range) {
+        for (std::size_t i = range.begin(); i < range.end(); ++i) {
+            const HitPoint &h = points[i];
+            m.entries[i] = {{h.position.x, h.position.y, h.position.z}, h.r2, static_cast<std::uint32_t>(i)};
+        }
+    });
     const int parts = part_count(count);
-    m.order.resize(count);
-    std::iota(m.order.begin(), m.order.end(), std::uint32_t{0});
-    std::vector<std::size_t> ends;
-    split(points, m.order.data(), 0, count, parts, ends);
-    m.parts.resize(ends.size());
+    std::vector<std::pair<Entry *, Entry *>> runs(parts);
+    split(m.entries.data(), m.entries.data() + count, parts, runs.data());
+    m.parts.resize(parts);
     for (auto &part : m.parts)
         if (!part) part = std::make_unique<Part>();
-    tbb::parallel_for(std::size_t{0}, ends.size(), [&](std::size_t k) {
+    tbb::parallel_for(0, parts, [&](int k) {
         Part &part = *m.parts[k];
-        const std::size_t begin = k == 0 ? 0 : ends[k - 1], end = ends[k];
-        part.cloud.entries.resize(end - begin);
+        part.cloud.entries = runs[k].first;
+        part.cloud.count = static_cast<std::size_t>(runs[k].second - runs[k].first);
         Box3 box;
         double max_r2 = 0;
-        for (std::size_t i = begin; i < end; ++i) {
-            const HitPoint &h = points[m.order[i]];
-            part.cloud.entries[i - begin] = {{h.position.x, h.position.y, h.position.z}, h.r2, m.order[i]};
-            box.extend(h.position);
-            max_r2 = std::max(max_r2, h.r2);
+        for (const Entry *e = runs[k].first; e != runs[k].second; ++e) {
+            box.extend({e->p[0], e->p[1], e->p[2]});
+            max_r2 = std::max(max_r2, e->r2);
         }
         part.lower = box.lower;
         part.upper = box.upper;
@@ -177,7 +192,7 @@ void HitPointTree::query(const Vec3 &photon, HitPointVisitor visit) const {
     if (m.size == 0 || !is_finite(photon)) return;
     const double p[3] = {photon.x, photon.y, photon.z};
     for (const auto &part : m.parts) {
-        if (part->cloud.entries.empty()) continue;
+        if (part->cloud.count == 0) continue;
         // Outside the part's box by more than the search radius: nothing there can hold it.
         double outside2 = 0;
         for (int axis = 0; axis < 3; ++axis) {
@@ -185,7 +200,7 @@ void HitPointTree::query(const Vec3 &photon, HitPointVisitor visit) const {
             outside2 += d * d;
         }
         if (outside2 > part->search_r2) continue;
-        VisitWithinRadius result(part->cloud.entries.data(), photon, part->search_r2, visit);
+        VisitWithinRadius result(part->cloud.entries, photon, part->search_r2, visit);
         part->tree.findNeighbors(result, p, nanoflann::SearchParams());
     }
 }
