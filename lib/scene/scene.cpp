@@ -1,7 +1,6 @@
 #include "scene/scene.h"
 
 #include "core/error.h"
-#include "geometry/sphere_geometry.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -19,7 +18,7 @@ namespace {
 // least 1/64 of the scene box's volume (a box wider than a quarter of the scene's on every
 // axis), at most 8 of them, the largest first. A BVH cannot cull such a box, and in it the box
 // would widen the nodes above everything else.
-std::vector<uint32_t> spheres_tested_directly(const std::vector<std::unique_ptr<Geometry>> &geometries,
+std::vector<uint32_t> big_sphere_ids(const std::vector<std::unique_ptr<Geometry>> &geometries,
                                               const Box3 &scene_box) {
     constexpr double min_volume_fraction = 1.0 / 64;
     constexpr size_t max_direct = 8;
@@ -150,9 +149,12 @@ void Scene::commit() {
     rtcSetSceneFlags(rtc, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(rtc, RTC_BUILD_QUALITY_HIGH);
     try {
-        direct_spheres_ = spheres_tested_directly(geometries_, bounds);
+        direct_spheres_.clear();
+        const std::vector<uint32_t> big = big_sphere_ids(geometries_, bounds);
+        for (uint32_t id : big)
+            direct_spheres_.push_back({id, &static_cast<const SphereGeometry &>(*geometries_[id]).data()});
         for (size_t id = 0; id < geometries_.size(); ++id) {
-            if (std::find(direct_spheres_.begin(), direct_spheres_.end(), id) != direct_spheres_.end()) continue;
+            if (std::find(big.begin(), big.end(), id) != big.end()) continue;
             RTCGeometry g = geometries_[id]->create_embree(device, frame_);
             context_->check_embree("creating Embree geometry");
             if (!g) fail(PPM_ERROR_OUT_OF_MEMORY, "creating Embree geometry failed");
@@ -233,9 +235,9 @@ void Scene::intersect(const ppm_ray &ray, ppm_hit &hit) const {
     rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     // The big spheres first: a hit there shortens the ray Embree traverses.
-    for (uint32_t id : direct_spheres_)
-        if (SphereGeometry::test(static_cast<const SphereGeometry &>(*geometries_[id]).data(), query)) {
-            query.hit.geom_id = id;
+    for (const DirectSphere &sphere : direct_spheres_)
+        if (SphereGeometry::test(*sphere.data, query)) {
+            query.hit.geom_id = sphere.geom_id;
             rayhit.ray.tfar = std::min(rayhit.ray.tfar, query.embree_tfar(query.hit.t));
         }
     rtcIntersect1(rtc_scene_, &query.embree, &rayhit);
@@ -256,8 +258,8 @@ bool Scene::occluded(const ppm_ray &ray) const {
     RayQuery query;
     RTCRay embree_ray;
     if (!start_query(ray, true, query, embree_ray)) return false;
-    for (uint32_t id : direct_spheres_)
-        if (SphereGeometry::test(static_cast<const SphereGeometry &>(*geometries_[id]).data(), query)) return true;
+    for (const DirectSphere &sphere : direct_spheres_)
+        if (SphereGeometry::test(*sphere.data, query)) return true;
     rtcOccluded1(rtc_scene_, &query.embree, &embree_ray);
     return query.found;
 }

@@ -5,6 +5,7 @@
 #include <ppm/ppm.h>
 
 #include "core/context.h"
+#include "geometry/sphere_geometry.h"
 #include "render/light.h"
 #include "render/material.h"
 #include "scene/geometry.h"
@@ -69,7 +70,11 @@ private:
     // Spheres whose box holds much of the scene's (Hachisuka's walls of radius 1e5): every ray
     // overlaps them, so they stay out of the BVH, where their boxes would hide everything else
     // from the culling, and every query tests them directly.
-    std::vector<uint32_t> direct_spheres_;
+    struct DirectSphere {
+        uint32_t geom_id;
+        const SphereGeometry::Data *data;
+    };
+    std::vector<DirectSphere> direct_spheres_;
 
     RTCScene rtc_scene_ = nullptr;
     bool committed_ = false;
