@@ -12,10 +12,10 @@ namespace {
 const char *const known_sets[] = {"random", "camera", "grazing", "seams", "poles", "leaving"};
 const char *const known_methods[] = {"exact", "newton", "embree", "adaptive", "cgal"};
 
+constexpr const char *command = "ppm-bench intersect";
+
 bool bad(const std::string &option, const std::string &value, const char *expected) {
-    std::fprintf(stderr, "ppm-bench intersect: %s '%s': expected %s\n", option.c_str(), value.c_str(),
-                 expected);
-    return false;
+    return report_bad_value(command, option, value, expected);
 }
 
 // A comma-separated list of integers in [low, high]; "none" (or an empty value) for none.
@@ -50,16 +50,13 @@ bool name_list(const std::string &option, const std::string &value, const char *
 constexpr const char *grid_list = "a list like 8,32 of grid sizes in [1, 4096], or none";
 
 bool apply(const std::string &option, const std::string &value, IntersectOptions &o) {
+    switch (apply_ray_set_option(command, option, value, o)) {
+    case OptionMatch::taken: return true;
+    case OptionMatch::invalid: return false;
+    case OptionMatch::other: break;
+    }
     long long n = 0;
-    if (option == "--bpt") {
-        o.bpt_path = value;
-    } else if (option == "--rays") {
-        if (!parse_integer(value, 0, 100000000, n)) return bad(option, value, "an integer in [0, 1e8]");
-        o.rays = size_t(n);
-    } else if (option == "--width" || option == "--height") {
-        if (!parse_integer(value, 0, 16384, n)) return bad(option, value, "an integer in [0, 16384]");
-        (option == "--width" ? o.width : o.height) = int(n);
-    } else if (option == "--sets") {
+    if (option == "--sets") {
         return name_list(option, value, known_sets, o.sets,
                          "a list of random, camera, grazing, seams, poles, leaving");
     } else if (option == "--angles") {
@@ -86,11 +83,6 @@ bool apply(const std::string &option, const std::string &value, IntersectOptions
     } else if (option == "--threads") {
         if (!parse_integer(value, 0, 1024, n)) return bad(option, value, "an integer in [0, 1024]");
         o.threads = int(n);
-    } else if (option == "--min-time") {
-        if (!parse_double(value, 0, 60, o.min_seconds)) return bad(option, value, "seconds in [0, 60]");
-    } else if (option == "--seed") {
-        if (!parse_integer(value, 0, INT64_MAX, n)) return bad(option, value, "a non-negative integer");
-        o.seed = uint64_t(n);
     } else if (option == "--list") {
         if (!parse_integer(value, 0, 1000000, n)) return bad(option, value, "a non-negative integer");
         o.max_listed = size_t(n);
@@ -107,7 +99,7 @@ bool apply(const std::string &option, const std::string &value, IntersectOptions
     } else if (option == "--chart") {
         o.chart_dir = value;
     } else {
-        std::fprintf(stderr, "ppm-bench intersect: unknown option '%s'\n", option.c_str());
+        std::fprintf(stderr, "%s: unknown option '%s'\n", command, option.c_str());
         return false;
     }
     return true;
@@ -166,13 +158,13 @@ void print_intersect_usage(std::FILE *out) {
 }
 
 ParseResult parse_intersect_args(int argc, char **argv, int first, IntersectOptions &options) {
-    const ParseResult read = read_options("ppm-bench intersect", argc, argv, first, [&](const std::string &option,
+    const ParseResult read = read_options(command, argc, argv, first, [&](const std::string &option,
                                                                           const std::string &value) {
         return apply(option, value, options);
     });
     if (read != ParseResult::run) return read;
     if ((options.width == 0) != (options.height == 0)) {
-        std::fprintf(stderr, "ppm-bench intersect: --width and --height must both be 0 or both positive\n");
+        std::fprintf(stderr, "%s: --width and --height must both be 0 or both positive\n", command);
         return ParseResult::error;
     }
     return ParseResult::run;

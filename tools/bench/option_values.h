@@ -2,6 +2,7 @@
 // only if all of it parses and lies in the stated range, so "--rays 2k" is an error, not 2.
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -23,6 +24,42 @@ bool parse_integer_list(const std::string &text, long long low, long long high, 
 bool read_option(int argc, char **argv, int &i, std::string &option, std::string &value);
 
 enum class ParseResult { run, help, error };
+
+// Prints "<command>: <option> '<value>': expected <expected>" and returns false.
+bool report_bad_value(const char *command, const std::string &option, const std::string &value,
+                      const char *expected);
+
+enum class OptionMatch { taken, invalid, other };
+
+// The options of the model and its ray sets that every subcommand shares, for any options
+// struct with these members: bpt_path, rays, width, height, min_seconds, seed. `other` leaves
+// the option to the caller.
+template <class Options>
+OptionMatch apply_ray_set_option(const char *command, const std::string &option, const std::string &value,
+                                 Options &o) {
+    auto bad = [&](const char *expected) {
+        report_bad_value(command, option, value, expected);
+        return OptionMatch::invalid;
+    };
+    long long n = 0;
+    if (option == "--bpt") {
+        o.bpt_path = value;
+    } else if (option == "--rays") {
+        if (!parse_integer(value, 0, 100000000, n)) return bad("an integer in [0, 1e8]");
+        o.rays = size_t(n);
+    } else if (option == "--width" || option == "--height") {
+        if (!parse_integer(value, 0, 16384, n)) return bad("an integer in [0, 16384]");
+        (option == "--width" ? o.width : o.height) = int(n);
+    } else if (option == "--min-time") {
+        if (!parse_double(value, 0, 60, o.min_seconds)) return bad("seconds in [0, 60]");
+    } else if (option == "--seed") {
+        if (!parse_integer(value, 0, INT64_MAX, n)) return bad("a non-negative integer");
+        o.seed = uint64_t(n);
+    } else {
+        return OptionMatch::other;
+    }
+    return OptionMatch::taken;
+}
 
 // Reads every option from argv[first] on, handing each to apply(option, value), which
 // reports its own errors and returns false on one. -h or --help ends the reading with

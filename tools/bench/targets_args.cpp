@@ -9,9 +9,10 @@ namespace bench {
 
 namespace {
 
+constexpr const char *command = "ppm-bench targets";
+
 bool bad(const std::string &option, const std::string &value, const char *expected) {
-    std::fprintf(stderr, "ppm-bench targets: %s '%s': expected %s\n", option.c_str(), value.c_str(), expected);
-    return false;
+    return report_bad_value(command, option, value, expected);
 }
 
 // Without duplicates, which would only time the same method twice under one name.
@@ -26,32 +27,24 @@ bool presplit_list(const std::string &option, const std::string &value, std::vec
 }
 
 bool apply(const std::string &option, const std::string &value, TargetsOptions &o) {
+    switch (apply_ray_set_option(command, option, value, o)) {
+    case OptionMatch::taken: return true;
+    case OptionMatch::invalid: return false;
+    case OptionMatch::other: break;
+    }
     long long n = 0;
-    if (option == "--bpt") {
-        o.bpt_path = value;
-    } else if (option == "--presplit") {
+    if (option == "--presplit") {
         return presplit_list(option, value, o.presplits);
     } else if (option == "--grid") {
         if (!parse_integer(value, 1, 4096, n)) return bad(option, value, "an integer in [1, 4096]");
         o.grid = int(n);
-    } else if (option == "--rays") {
-        if (!parse_integer(value, 0, 100000000, n)) return bad(option, value, "an integer in [0, 1e8]");
-        o.rays = size_t(n);
-    } else if (option == "--width" || option == "--height") {
-        if (!parse_integer(value, 0, 16384, n)) return bad(option, value, "an integer in [0, 16384]");
-        (option == "--width" ? o.width : o.height) = int(n);
     } else if (option == "--rounds") {
         if (!parse_integer(value, 1, 1000, n)) return bad(option, value, "an integer in [1, 1000]");
         o.rounds = int(n);
-    } else if (option == "--min-time") {
-        if (!parse_double(value, 0, 60, o.min_seconds)) return bad(option, value, "seconds in [0, 60]");
-    } else if (option == "--seed") {
-        if (!parse_integer(value, 0, INT64_MAX, n)) return bad(option, value, "a non-negative integer");
-        o.seed = uint64_t(n);
     } else if (option == "--csv") {
         o.csv_path = value;
     } else {
-        std::fprintf(stderr, "ppm-bench targets: unknown option '%s'\n", option.c_str());
+        std::fprintf(stderr, "%s: unknown option '%s'\n", command, option.c_str());
         return false;
     }
     return true;
@@ -88,17 +81,17 @@ void print_targets_usage(std::FILE *out) {
 }
 
 ParseResult parse_targets_args(int argc, char **argv, int first, TargetsOptions &options) {
-    const ParseResult read = read_options("ppm-bench targets", argc, argv, first, [&](const std::string &option,
+    const ParseResult read = read_options(command, argc, argv, first, [&](const std::string &option,
                                                                           const std::string &value) {
         return apply(option, value, options);
     });
     if (read != ParseResult::run) return read;
     if ((options.width == 0) != (options.height == 0)) {
-        std::fprintf(stderr, "ppm-bench targets: --width and --height must both be 0 or both positive\n");
+        std::fprintf(stderr, "%s: --width and --height must both be 0 or both positive\n", command);
         return ParseResult::error;
     }
     if (options.rays == 0 && options.width == 0) {
-        std::fprintf(stderr, "ppm-bench targets: no rays to trace (--rays 0 and --width 0)\n");
+        std::fprintf(stderr, "%s: no rays to trace (--rays 0 and --width 0)\n", command);
         return ParseResult::error;
     }
     return ParseResult::run;
