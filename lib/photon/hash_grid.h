@@ -1,11 +1,16 @@
-// Hashed uniform grid over the hit points of one pass: the alternative to HitPointTree, with
-// the same interface, kept for the benchmark that chooses between them.
+// Hashed uniform grid over the hit points of one pass, with the same interface as
+// HitPointTree; the renderer's hit_point_search setting picks one of them.
 //
-// Cells are cubes as wide as the largest radius, so every hit point containing a photon lies
-// in a cell touched by the cube [photon - R, photon + R]: at most 3 cells per axis, usually 2
-// (8 cells rather than the classic 3x3x3). Cells are hashed into a power-of-two table of one
-// to two buckets per hit point; the hit points are stored sorted by bucket (a counting sort),
-// packed with their radii, so a query reads a few short contiguous runs.
+// Every hit point is listed in each cell its ball overlaps (pbrt-v3's SPPM grid), so a photon
+// reads exactly one cell: the hit points that may contain it, and few others. That suits the
+// photon pass, whose queries (millions) far outnumber the hit points' cell entries (a few per
+// point): a KD-tree searches the ball of the LARGEST radius around every photon, which, with
+// radii that differ across the image, reads many points no ball reaches.
+//
+// Cells are 8 mean radii wide (hash_grid.cpp says why), so a hit point is listed in 1 to 3
+// cells, and a ball spans at most 5 per axis. Cells are hashed into a power-of-two table; each
+// bucket is a run of hit point indices in increasing order (deterministic whatever the
+// thread count), and the positions and radii are packed apart from the caller's array.
 #pragma once
 
 #include "photon/hit_point.h"
@@ -18,13 +23,15 @@ namespace ppm {
 
 class HitPointGrid {
 public:
-    // Rebuilds the grid over points[0, count), count < 2^32. Positions and radii are copied,
-    // so the array may change or go away afterwards; visitors receive indices into it. Not
-    // thread-safe.
+    // Rebuilds the grid over points[0, count), count < 2^32, on the calling task arena's
+    // threads. Positions and radii are copied, so the array may change or go away afterwards;
+    // visitors receive indices into it. Not thread-safe.
     void build(const HitPoint *points, std::size_t count);
 
-    std::size_t size() const { return index_.size(); }
+    std::size_t size() const { return points_.size(); }
     double max_r2() const { return max_r2_; }
+    // Hit point entries over all cells (a point is listed once per cell its ball overlaps).
+    std::size_t cell_entries() const { return cell_points_.size(); }
 
     // Calls visit(index, dist2) once for every hit point with distance2(photon, position)
     // <= its r2, in no particular order. Thread-safe between builds.
@@ -35,23 +42,30 @@ public:
     }
 
 private:
-    struct Entry {
+    struct Point {
         Vec3 position;
         double r2;
+    };
+    struct CellRange {
+        std::int64_t lo[3], hi[3];
     };
 
     std::uint64_t bucket(std::int64_t i, std::int64_t j, std::int64_t k) const;
     std::int64_t cell(double x, int axis) const;
+    CellRange cells_of(const Point &p) const;
+    // Calls f(bucket) once for each distinct bucket of the cells the point's ball overlaps.
+    template <class F>
+    void for_each_bucket(const Point &p, F &&f) const;
 
-    std::vector<Entry> entries_;            // sorted by bucket
-    std::vector<std::uint32_t> index_;      // entries_[e] is hit point index_[e]
-    std::vector<std::uint32_t> bucket_start_; // bucket b holds entries [start[b], start[b+1])
+    std::vector<Point> points_;               // as given
+    std::vector<std::uint32_t> cell_points_;  // bucket by bucket, point indices
+    std::vector<std::uint32_t> bucket_start_; // bucket b lists cell_points_[start[b], start[b+1])
     std::uint64_t bucket_mask_ = 0;
-    Vec3 origin_;                           // lower corner of the hit points' bounds
+    Vec3 origin_;                             // lower corner of the balls' bounds
     double inv_cell_ = 0;
-    std::int64_t cells_[3] = {0, 0, 0};     // cells per axis
+    std::int64_t cells_[3] = {0, 0, 0};       // cells per axis
     double max_r2_ = 0;
-    double search_r_ = 0;
+    double pad_ = 0;                          // added to every radius against rounding
 };
 
 } // namespace ppm
