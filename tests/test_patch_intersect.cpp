@@ -2,6 +2,7 @@
 // the hyperbolic paraboloid z = x y, and a degree-elevated biquadratic (z = x^2 + y^2). The
 // expected t, u, v come from solving the (at most quadratic) equations in closed form.
 #include "geometry/patch_intersector.h"
+#include "scene/ray_query.h"
 
 #include <ppm/ppm.h>
 
@@ -194,6 +195,23 @@ void scene_reports_exact_hit_and_normal(void **) {
     ppm_context_release(context);
 }
 
+// Embree's far limit is rounded up with next_float_up, which must agree with std::nextafter:
+// one float too low and a box at the hit could be culled.
+void next_float_up_matches_nextafter(void **) {
+    const float specials[] = {0.0f, -0.0f, FLT_MIN, -FLT_MIN, FLT_TRUE_MIN, -FLT_TRUE_MIN, FLT_MAX, -FLT_MAX,
+                              1.0f, -1.0f, INFINITY, -INFINITY, 3.5e-20f, -7.25e12f};
+    for (float f : specials) {
+        const float expected = std::nextafter(f, INFINITY), actual = ppm::next_float_up(f);
+        assert_memory_equal(&expected, &actual, sizeof(float));
+    }
+    assert_true(std::isnan(ppm::next_float_up(NAN)));
+    test_rng rng{41};
+    for (int i = 0; i < 100000; ++i) {
+        const float f = static_cast<float>((test_rng_uniform(&rng) - 0.5) * std::ldexp(1.0, static_cast<int>(test_rng_uniform(&rng) * 200) - 100));
+        assert_true(ppm::next_float_up(f) == std::nextafter(f, INFINITY));
+    }
+}
+
 } // namespace
 
 int main() {
@@ -204,6 +222,7 @@ int main() {
         cmocka_unit_test(grazing_rays_hit_the_plane),
         cmocka_unit_test(nearest_of_two_roots_and_ray_interval),
         cmocka_unit_test(scene_reports_exact_hit_and_normal),
+        cmocka_unit_test(next_float_up_matches_nextafter),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

@@ -13,14 +13,21 @@ namespace {
 // for Ray/Sphere Intersection" (Haines et al., Ray Tracing Gems, ch. 7).
 bool test_sphere(const SphereGeometry::Data &s, unsigned, RayQuery &query) {
     const Vec3 f = query.org - s.center;
-    const double a = dot(query.dir, query.dir);
     const double b = dot(f, query.dir);
-    const Vec3 l = f - query.dir * (b / a);
-    const double disc = a * (s.radius * s.radius - dot(l, l));
+    const double ff = dot(f, f);
+    const double r2 = s.radius * s.radius;
+    const double c = ff - r2;
+    // Outside the sphere (beyond the rounding of c) and moving away from its centre: both roots
+    // are behind the origin (their product c/a > 0, their sum -2b/a <= 0) and tnear >= 0.
+    // Most rays leave most of a room's wall spheres this way, without a division or sqrt.
+    if (b >= 0 && c > 4 * DBL_EPSILON * ff) return false;
+    const double a = dot(query.dir, query.dir);
+    const double inv_a = 1.0 / a;
+    const Vec3 l = f - query.dir * (b * inv_a);
+    const double disc = a * (r2 - dot(l, l));
     if (!(disc >= 0)) return false;
-    const double c = dot(f, f) - s.radius * s.radius;
     const double q = -(b + std::copysign(std::sqrt(disc), b));
-    double t0 = q / a, t1 = q != 0 ? c / q : t0;
+    double t0 = q * inv_a, t1 = q != 0 ? c / q : t0;
     if (t0 > t1) std::swap(t0, t1);
     for (double t : {t0, t1})
         if (t >= query.tnear && t <= query.hit.t) {
@@ -81,12 +88,18 @@ void SphereGeometry::describe_hit(const RayQuery &query, double tolerance, ppm_h
     p.store(hit.p);
     n.store(hit.ng);
     n.store(hit.ns);
+    hit.p_error = tolerance + 32 * DBL_EPSILON * (max_abs_component(data_.center) + data_.radius);
+}
+
+// Spherical coordinates of the normal in the object's frame: u = phi / 2 pi from its x axis
+// towards y, v = theta / pi from its z axis.
+void SphereGeometry::compute_uv(ppm_hit &hit) const {
+    const Vec3 n = Vec3::from(hit.ng);
     const double lx = dot(n, data_.axis[0]), ly = dot(n, data_.axis[1]), lz = dot(n, data_.axis[2]);
     double phi = std::atan2(ly, lx);
     if (phi < 0) phi += 2 * M_PI;
     hit.u = phi / (2 * M_PI);
     hit.v = std::acos(std::clamp(lz, -1.0, 1.0)) / M_PI;
-    hit.p_error = tolerance + 32 * DBL_EPSILON * (max_abs_component(data_.center) + data_.radius);
 }
 
 } // namespace ppm

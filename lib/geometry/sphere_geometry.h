@@ -15,6 +15,7 @@ public:
     Box3 prepare(const Affine &transform) override;
     RTCGeometry create_embree(RTCDevice device, const EmbreeFrame &frame) override;
     void describe_hit(const RayQuery &query, double tolerance, ppm_hit &hit) const override;
+    void compute_uv(ppm_hit &hit) const override;
 
     struct Data {
         Vec3 center;

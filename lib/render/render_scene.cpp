@@ -66,7 +66,7 @@ size_t RenderScene::pick_light(double u, double *probability) const {
 }
 
 bool RenderScene::intersect(const ppm_ray &ray, SurfacePoint &out) const {
-    scene_->intersect(ray, out.hit);
+    scene_->intersect(ray, out.hit, false);
     if (out.hit.geom_id == PPM_INVALID_ID) return false;
     const Geometry &g = scene_->geometry(out.hit.geom_id);
     out.p = Vec3::from(out.hit.p);
@@ -74,9 +74,15 @@ bool RenderScene::intersect(const ppm_ray &ray, SurfacePoint &out) const {
     out.frame = Frame::from_normal(Vec3::from(out.hit.ns));
     const Vec3 wo = normalize(Vec3::from(ray.dir)) * -1.0;
     out.wo_local = out.frame.to_local(wo);
-    double s, t;
-    g.texture_coordinates(out.hit, &s, &t);
-    out.bsdf = geometry_materials_[out.hit.geom_id].at(s, t);
+    const Material &material = geometry_materials_[out.hit.geom_id];
+    if (material.texture) {
+        g.compute_uv(out.hit);
+        double s, t;
+        g.texture_coordinates(out.hit, &s, &t);
+        out.bsdf = material.at(s, t);
+    } else {
+        out.bsdf = material.bsdf;
+    }
     out.emitted = (!g.emission.is_black() && dot(out.ng, wo) > 0) ? g.emission : Rgb();
     return true;
 }

@@ -45,6 +45,10 @@ public:
 
     // Fills p, p_error, ng and ns of a hit from its t/u/v/prim_id.
     virtual void describe_hit(const RayQuery &query, double tolerance, ppm_hit &hit) const = 0;
+    // Fills u and v of a described hit where they cost more than the hit itself (a sphere's
+    // atan2 and acos); the others have them from the intersection already. Separate so that
+    // the renderer pays only for textured surfaces.
+    virtual void compute_uv(ppm_hit &hit) const { (void)hit; }
 
     // Texture coordinates (s, t) of a hit: its (u, v) unless the kind maps them (mesh vertex
     // uvs, a patch set's per-patch rectangles).

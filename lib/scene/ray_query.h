@@ -10,8 +10,22 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <limits>
 
 namespace ppm {
+
+// std::nextafter(f, INFINITY) without the libm call (1 % of a photon pass): the float above f,
+// f itself for +inf and NaN.
+inline float next_float_up(float f) {
+    if (!(f < INFINITY)) return f;
+    if (f == 0) return std::numeric_limits<float>::denorm_min();
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    bits = f > 0 ? bits + 1 : bits - 1; // sign-magnitude: a negative f grows as its magnitude shrinks
+    std::memcpy(&f, &bits, sizeof f);
+    return f;
+}
 
 struct HitRecord {
     double t = INFINITY;
@@ -56,7 +70,7 @@ struct RayQuery {
 
     // Embree's far limit for a double t: rounded up so that no box at t is culled.
     float embree_tfar(double t) const {
-        return std::nextafter(static_cast<float>((t - t_shift) * dir_length), INFINITY);
+        return next_float_up(static_cast<float>((t - t_shift) * dir_length));
     }
 
 private:

@@ -227,7 +227,7 @@ bool Scene::start_query(const ppm_ray &ray, bool any_hit, RayQuery &query, RTCRa
     return true;
 }
 
-void Scene::intersect(const ppm_ray &ray, ppm_hit &hit) const {
+void Scene::intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv) const {
     RayQuery query;
     RTCRayHit rayhit;
     if (!start_query(ray, false, query, rayhit.ray)) return write_miss(hit);
@@ -252,6 +252,7 @@ void Scene::intersect(const ppm_ray &ray, ppm_hit &hit) const {
     hit.prim_id = query.hit.prim_id;
     hit.material = g.material;
     g.describe_hit(query, frame_.tolerance, hit);
+    if (surface_uv) g.compute_uv(hit);
 }
 
 bool Scene::occluded(const ppm_ray &ray) const {

@@ -46,7 +46,8 @@ public:
     double absolute_tolerance() const { return frame_.tolerance; }
 
     // Single-ray queries on a committed scene; the ray must be valid (see validate_ray).
-    void intersect(const ppm_ray &ray, ppm_hit &hit) const;
+    // Without surface_uv, u and v may be left 0 where they cost extra (Geometry::compute_uv).
+    void intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv = true) const;
     bool occluded(const ppm_ray &ray) const;
 
     // Batch queries: validate all rays, then run on the context's threads.
