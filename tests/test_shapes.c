@@ -859,6 +859,69 @@ static void test_huge_wall_spheres_and_small_ones(void **state) {
     }
 }
 
+/* Both roots of a unit-direction ray and a sphere, ascending (INFINITY twice on a miss). */
+static void sphere_roots(const double o[3], const double d[3], const double c[3], double r, double t[2]) {
+    double f[3], l[3];
+    for (int k = 0; k < 3; ++k) f[k] = o[k] - c[k];
+    const double b = f[0] * d[0] + f[1] * d[1] + f[2] * d[2];
+    for (int k = 0; k < 3; ++k) l[k] = f[k] - d[k] * b;
+    const double disc = r * r - (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+    t[0] = t[1] = INFINITY;
+    if (disc < 0) return;
+    const double q = -(b + copysign(sqrt(disc), b));
+    const double cc = f[0] * f[0] + f[1] * f[1] + f[2] * f[2] - r * r;
+    t[0] = q;
+    t[1] = q != 0 ? cc / q : q;
+    if (t[0] > t[1]) { const double s = t[0]; t[0] = t[1]; t[1] = s; }
+}
+
+/* Overlapping spheres of many sizes (big ones tested outside the BVH, small ones in it), rays
+ * from anywhere (inside spheres too) with directions of any length and random [tnear, tfar]:
+ * the nearest root within the interval, as brute force finds it. Exercises the sphere test's
+ * shortcuts (receding rays, roots beyond the nearest hit so far) in every order. */
+static void test_random_spheres_and_ray_intervals(void **state) {
+    fixture *f = *state;
+    test_rng rng = {23};
+    double spheres[40][4];
+    for (int s = 0; s < 40; ++s) {
+        for (int k = 0; k < 3; ++k) spheres[s][k] = 200 * test_rng_uniform(&rng) - 100;
+        spheres[s][3] = s < 4 ? 60 + 60 * test_rng_uniform(&rng) : 1 + 20 * test_rng_uniform(&rng);
+        add_sphere(f->scene, spheres[s][0], spheres[s][1], spheres[s][2], spheres[s][3]);
+    }
+    commit(f->scene);
+    int hits = 0;
+    for (int i = 0; i < 4000; ++i) {
+        double o[3], d[3];
+        for (int k = 0; k < 3; ++k) o[k] = 300 * test_rng_uniform(&rng) - 150;
+        for (int k = 0; k < 3; ++k) d[k] = test_rng_uniform(&rng) - 0.5;
+        const double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        for (int k = 0; k < 3; ++k) d[k] /= len;
+        const double scale = pow(10.0, 4 * test_rng_uniform(&rng) - 2); /* |dir| in [0.01, 100] */
+        const double tnear = test_rng_uniform(&rng) < 0.5 ? 0 : 100 * test_rng_uniform(&rng);
+        const double tfar = test_rng_uniform(&rng) < 0.5 ? INFINITY : tnear + 200 * test_rng_uniform(&rng);
+        double best = INFINITY;
+        int nearest = -1;
+        for (int s = 0; s < 40; ++s) {
+            double t[2];
+            sphere_roots(o, d, spheres[s], spheres[s][3], t);
+            for (int k = 0; k < 2; ++k)
+                if (t[k] >= tnear && t[k] <= tfar && t[k] < best) { best = t[k]; nearest = s; }
+        }
+        ppm_ray ray = make_ray(o[0], o[1], o[2], d[0] * scale, d[1] * scale, d[2] * scale);
+        ray.tnear = tnear / scale;
+        ray.tfar = tfar / scale;
+        const ppm_hit hit = trace(f->scene, ray);
+        if (nearest < 0) {
+            assert_miss(hit);
+            continue;
+        }
+        ++hits;
+        assert_int_equal(hit.geom_id, (uint32_t)nearest);
+        assert_close(hit.t * scale, best, 1e-9 * (1 + best));
+    }
+    assert_true(hits > 1000);
+}
+
 /* Twelve nested spheres, all with boxes holding most of the scene's: more than the library
  * tests outside its BVH, so the smaller ones stay in it. The nearest is found either way. */
 static void test_many_nested_big_spheres(void **state) {
@@ -892,6 +955,7 @@ int main(void) {
         TEST(test_sphere_tnear_tfar),
         TEST(test_huge_wall_spheres_and_small_ones),
         TEST(test_many_nested_big_spheres),
+        TEST(test_random_spheres_and_ray_intervals),
         TEST(test_quad_hit_inside),
         TEST(test_quad_miss_outside),
         TEST(test_quad_edges_and_corners_hit),

@@ -21,8 +21,15 @@ bool test_sphere(const SphereGeometry::Data &s, unsigned, RayQuery &query) {
     // are behind the origin (their product c/a > 0, their sum -2b/a <= 0) and tnear >= 0.
     // Most rays leave most of a room's wall spheres this way, without a division or sqrt.
     if (b >= 0 && c > 4 * DBL_EPSILON * ff) return false;
-    const double a = dot(query.dir, query.dir);
-    const double inv_a = 1.0 / a;
+    const double a = query.dir_length2, inv_a = query.inv_dir_length2;
+    // Both roots beyond the nearest hit so far: the quadratic a t^2 + 2 b t + c is positive at
+    // that t, which lies before its vertex -b/a. Skips the sqrt and division for the walls a
+    // ray meets after the one it hits; the margin covers the evaluation's rounding.
+    const double t_far = query.hit.t;
+    if (t_far < INFINITY && b < -a * t_far) {
+        const double value = (a * t_far + 2 * b) * t_far + c;
+        if (value > 1e-12 * (a * t_far * t_far + 2 * std::fabs(b) * t_far + ff + r2)) return false;
+    }
     const Vec3 l = f - query.dir * (b * inv_a);
     const double disc = a * (r2 - dot(l, l));
     if (!(disc >= 0)) return false;

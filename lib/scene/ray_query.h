@@ -41,6 +41,7 @@ struct RayQuery {
     double tnear = 0;     // accepted hits: t in [tnear, hit.t]
     double t_shift = 0;   // Embree's ray starts at org + t_shift * dir ...
     double dir_length = 1; // ... and runs along dir / |dir|: t = t_shift + t_embree / |dir|
+    double dir_length2 = 1, inv_dir_length2 = 1; // |dir|^2 and its inverse, for quadrics
     double tolerance = 0; // absolute, from the scene
     bool any_hit = false;
     bool found = false;

@@ -190,7 +190,9 @@ bool Scene::start_query(const ppm_ray &ray, bool any_hit, RayQuery &query, RTCRa
     query.hit.t = ray.tfar;
     query.tolerance = frame_.tolerance;
     query.any_hit = any_hit;
-    query.dir_length = length(query.dir);
+    query.dir_length2 = dot(query.dir, query.dir);
+    query.inv_dir_length2 = 1.0 / query.dir_length2;
+    query.dir_length = std::sqrt(query.dir_length2);
 
     // Clip to the padded scene box in double, so Embree's float ray starts near the geometry
     // and its rounding stays relative to the scene's size, not to the origin's distance.
