@@ -75,14 +75,14 @@ std::vector<HitPoint> camera_hit_points(double footprint_scale, double shrink_mi
             const Vec3 d = normalize(cx * sx + cy * sy + dir);
             const Vec3 o = eye + d * 140; // start inside the box, as smallpt does
             HitPoint h;
-            if (!trace(o, d, h.position, h.normal)) continue;
+            Vec3 normal;
+            if (!trace(o, d, h.position, normal)) continue;
             const double distance = length(h.position - eye);
             // The footprint's area grows as 1 / cos, its mean width as 1 / sqrt(cos).
-            const double cosine = std::max(std::fabs(dot(h.normal, d)), 0.05);
+            const double cosine = std::max(std::fabs(dot(normal, d)), 0.05);
             const double r = footprint_scale * distance * pixel_angle / std::sqrt(cosine) *
                              (shrink_min + (1 - shrink_min) * rng.uniform());
             h.r2 = r * r;
-            h.pixel = pixel;
             points.push_back(h);
         }
     return points;

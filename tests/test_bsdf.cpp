@@ -371,6 +371,31 @@ void non_specular_parts_are_reciprocal(void **) {
     }
 }
 
+// The photon pass evaluates each visible point's BSDF through fixed_wo(): it must agree with
+// eval() (times the weight) for every type, side and wi, and be black where eval is.
+void fixed_wo_lobe_matches_eval(void **) {
+    const Bsdf materials[] = {Bsdf::diffuse({0.2, 0.5, 0.9}), Bsdf::coated({0.8, 0.7, 0.1}, 1.5, 1.0),
+                              Bsdf::coated({0.4, 0.4, 0.4}, 1.0 / 1.33, 1.0), Bsdf::mirror(Rgb(0.9)),
+                              Bsdf::dielectric(1.5, 1.0)};
+    const Rgb weight{0.5, 2.0, 1.25};
+    test_rng rng{17};
+    for (const Bsdf &bsdf : materials) {
+        for (int k = 0; k < 5000; ++k) {
+            Vec3 wo = random_upper(&rng), wi = random_upper(&rng);
+            if (k % 2) wo = flip(wo);
+            if (k % 3 == 0) wi = flip(wi);
+            const FixedWoLobe lobe = bsdf.fixed_wo(wo, weight);
+            const Rgb expected = weight * bsdf.eval(wo, wi);
+            const Rgb actual = lobe.at(wo.z > 0 ? wi.z : -wi.z);
+            assert_close(actual.r, expected.r, 1e-15 * (1 + expected.max()));
+            assert_close(actual.g, expected.g, 1e-15 * (1 + expected.max()));
+            assert_close(actual.b, expected.b, 1e-15 * (1 + expected.max()));
+            assert_true(actual.is_black() == expected.is_black());
+        }
+        assert_true(bsdf.fixed_wo({1, 0, 0}, weight).at(0.5).is_black()); // grazing wo
+    }
+}
+
 void back_side_of_opaque_materials_mirrors_the_front(void **) {
     const Bsdf coated = Bsdf::coated({0.5, 0.6, 0.7}, 1.5, 1.0);
     const Vec3 wo = direction(30 * kDeg, 0.4), wi = direction(70 * kDeg, 2.5);
@@ -427,6 +452,7 @@ int main() {
         cmocka_unit_test(glass_conserves_energy_in_importance_mode),
         cmocka_unit_test(glass_refraction_follows_snell),
         cmocka_unit_test(non_specular_parts_are_reciprocal),
+        cmocka_unit_test(fixed_wo_lobe_matches_eval),
         cmocka_unit_test(back_side_of_opaque_materials_mirrors_the_front),
         cmocka_unit_test(with_reflectance_keeps_the_coat),
         cmocka_unit_test(invalid_parameters_are_rejected),

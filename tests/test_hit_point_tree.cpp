@@ -98,7 +98,6 @@ Vec3 random_in_box(test_rng &rng, const Vec3 &lower, const Vec3 &upper) {
 HitPoint hit_point(const Vec3 &position, double r2) {
     HitPoint h;
     h.position = position;
-    h.normal = {0, 0, 1};
     h.r2 = r2;
     return h;
 }
@@ -111,7 +110,6 @@ void random_points_with_random_radii_match_brute_force(void **) {
     for (int i = 0; i < 3000; ++i) {
         const double r = 0.05 + 0.55 * test_rng_uniform(&rng);
         points.push_back(hit_point(random_in_box(rng, lower, upper), r * r));
-        points.back().pixel = static_cast<std::uint32_t>(i);
     }
     std::vector<Vec3> photons;
     for (int i = 0; i < 3000; ++i) photons.push_back(random_in_box(rng, lower - Vec3{1, 1, 1}, upper + Vec3{1, 1, 1}));

@@ -10,12 +10,11 @@
 namespace ppm {
 
 // Where a camera path stopped on a non-specular surface, with the gather radius of its pixel.
-// The renderer keeps the rest (BSDF, path weight) in a parallel array with the same indices.
+// The renderer keeps the rest (normal, BSDF, path weight) in a parallel array with the same
+// indices.
 struct HitPoint {
     Vec3 position;
-    Vec3 normal;   // unit surface normal, for the renderer's back-side test
     double r2 = 0; // gather radius squared; finite and >= 0
-    std::uint32_t pixel = 0;
 };
 
 // The one definition of "the photon is inside the hit point's radius", shared by the search

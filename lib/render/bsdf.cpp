@@ -202,6 +202,25 @@ Rgb Bsdf::eval(const Vec3 &wo, const Vec3 &wi) const {
     return Rgb();
 }
 
+FixedWoLobe Bsdf::fixed_wo(const Vec3 &wo, const Rgb &weight) const {
+    FixedWoLobe lobe;
+    if (wo.z == 0 || !std::isfinite(wo.z)) return lobe;
+    switch (type_) {
+    case Type::Diffuse:
+        lobe.factor_ = weight * (reflectance_ * kInvPi);
+        break;
+    case Type::Coated:
+        lobe.factor_ = weight * (reflectance_ * (coat_diffuse_scale_ * (1.0 - fresnel_dielectric(std::fabs(wo.z), eta_)) * kInvPi));
+        lobe.eta_ = eta_;
+        lobe.coat_ = true;
+        break;
+    case Type::Mirror:
+    case Type::Dielectric:
+        break;
+    }
+    return lobe;
+}
+
 double Bsdf::pdf(const Vec3 &wo, const Vec3 &wi) const {
     if (!(wo.z * wi.z > 0)) return 0.0;
     const double cosine_pdf = std::fabs(wi.z) * kInvPi;

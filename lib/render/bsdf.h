@@ -66,6 +66,24 @@ inline double fresnel_dielectric(double cos_i, double eta) {
 // light arriving from outside (eta = n_inside / n_outside), by quadrature.
 double fresnel_diffuse_reflectance(double eta);
 
+// eval() at one wo for many wi (the photons landing at a visible point), with what depends
+// on wo alone computed once: eval(wo, wi) = at(wi.z) * sign-matched, see Bsdf::fixed_wo.
+class FixedWoLobe {
+public:
+    // f(wo, wi) times `weight` (given to Bsdf::fixed_wo) for cos_wi = wi.z taken on wo's side
+    // of the shading normal (wi.z * sign(wo.z)); zero when wi is on the other side.
+    Rgb at(double cos_wi) const {
+        if (!(cos_wi > 0)) return Rgb();
+        return coat_ ? factor_ * (1.0 - fresnel_dielectric(cos_wi, eta_)) : factor_;
+    }
+
+private:
+    friend class Bsdf;
+    Rgb factor_;        // weight f without the coat's (1 - F(cos wi)) factor
+    double eta_ = 1;
+    bool coat_ = false;
+};
+
 class Bsdf {
 public:
     enum class Type : uint8_t { Diffuse, Mirror, Dielectric, Coated };
@@ -108,6 +126,8 @@ public:
     // f(wo, wi) of the non-specular part (without the cosine), and the density with which
     // sample() produces wi through that part (including the lobe selection probability).
     Rgb eval(const Vec3 &wo, const Vec3 &wi) const;
+    // weight * eval(wo, .) with wo fixed; black where eval is (specular types, wo.z == 0).
+    FixedWoLobe fixed_wo(const Vec3 &wo, const Rgb &weight) const;
     double pdf(const Vec3 &wo, const Vec3 &wi) const;
 
 private:

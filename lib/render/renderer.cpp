@@ -67,26 +67,57 @@ void Renderer::render_pass() {
     commit_pass();
 }
 
+// The valid visible points, in slot order, as hit points to search and the data deposit()
+// reads: compacted block by block in parallel (a serial pass over the ~250-byte visible
+// points took a third of the search's build time).
 void Renderer::build_search() {
-    hit_points_.clear();
+    constexpr std::size_t kBlock = 16384;
+    const std::size_t slots = visible_.size(), blocks = (slots + kBlock - 1) / kBlock;
+    std::vector<std::size_t> block_start(blocks + 1, 0);
+    std::vector<Box3> block_bounds(blocks);
+    std::vector<double> block_max_r2(blocks, 0.0);
+    scene_->context().run([&] {
+        tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+            std::size_t valid = 0;
+            for (std::size_t slot = b * kBlock, end = std::min(slots, slot + kBlock); slot < end; ++slot)
+                valid += visible_[slot].valid;
+            block_start[b + 1] = valid;
+        });
+        for (std::size_t b = 0; b < blocks; ++b) block_start[b + 1] += block_start[b];
+        hit_points_.resize(block_start[blocks]);
+        gather_.resize(block_start[blocks]);
+        tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+            std::size_t out = block_start[b];
+            for (std::size_t slot = b * kBlock, end = std::min(slots, slot + kBlock); slot < end; ++slot) {
+                const VisiblePoint &vp = visible_[slot];
+                if (!vp.valid) continue;
+                const double r2 = stats_[slot].r2 > 0 ? stats_[slot].r2 : vp.initial_r2;
+                hit_points_[out] = {vp.p, r2};
+                const double side = vp.wo_local.z >= 0 ? 1.0 : -1.0;
+                gather_[out] = {vp.normal, vp.frame.n * side, vp.bsdf.fixed_wo(vp.wo_local, vp.weight),
+                                static_cast<std::uint32_t>(slot)};
+                block_bounds[b].extend(vp.p);
+                block_max_r2[b] = std::max(block_max_r2[b], r2);
+                ++out;
+            }
+        });
+    });
     gather_bounds_ = Box3();
     double max_r2 = 0;
-    for (std::uint32_t slot = 0; slot < visible_.size(); ++slot) {
-        const VisiblePoint &vp = visible_[slot];
-        if (!vp.valid) continue;
-        const double r2 = stats_[slot].r2 > 0 ? stats_[slot].r2 : vp.initial_r2;
-        hit_points_.push_back({vp.p, vp.normal, r2, slot});
-        gather_bounds_.extend(vp.p);
-        max_r2 = std::max(max_r2, r2);
+    for (std::size_t b = 0; b < blocks; ++b) {
+        gather_bounds_.extend(block_bounds[b]);
+        max_r2 = std::max(max_r2, block_max_r2[b]);
     }
     const double pad = std::sqrt(max_r2) * (1 + 1e-9) + 1e-12 * gather_bounds_.diagonal();
     gather_bounds_.lower -= Vec3{pad, pad, pad};
     gather_bounds_.upper += Vec3{pad, pad, pad};
-    if (settings_.search == RenderSettings::Search::Grid)
-        grid_.build(hit_points_.data(), hit_points_.size());
-    else
-        // In the context's arena: the tree builds its parts on the context's workers.
-        scene_->context().run([&] { tree_.build(hit_points_.data(), hit_points_.size()); });
+    // In the context's arena: the structures build on the context's workers.
+    scene_->context().run([&] {
+        if (settings_.search == RenderSettings::Search::Grid)
+            grid_.build(hit_points_.data(), hit_points_.size());
+        else
+            tree_.build(hit_points_.data(), hit_points_.size());
+    });
 }
 
 void Renderer::commit_pass() {

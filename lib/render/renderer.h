@@ -56,6 +56,15 @@ struct VisiblePoint {
     double initial_r2 = 0;
 };
 
+// What a photon landing within a hit point's radius needs of its visible point, packed (a
+// VisiblePoint is about 250 bytes, and the photon pass reads these at random).
+struct GatherPoint {
+    Vec3 normal;         // geometric, on the camera's side: photons from behind are rejected
+    Vec3 shading_normal; // on the side of wo: a photon's cos(wi) is -dot(it, direction)
+    FixedWoLobe lobe;    // the camera path's weight times the BSDF at this wo
+    std::uint32_t slot;
+};
+
 // A photon arriving at a surface where it may be gathered, buffered so that a batch of them
 // can be gathered in spatial order (hit points then stay in cache).
 struct PhotonHit {
@@ -144,7 +153,8 @@ private:
     std::vector<VisiblePoint> visible_;
     std::vector<Rgb> pass_direct_;
     std::vector<Rgb> fixed_emitted_; // PPM: emission seen along each split path (constant)
-    std::vector<HitPoint> hit_points_;
+    std::vector<HitPoint> hit_points_;    // the valid visible points' positions and radii ...
+    std::vector<GatherPoint> gather_;      // ... and what deposit() needs of them
     HitPointGrid grid_;
     HitPointTree tree_;
     std::unique_ptr<FluxAccumulator> flux_;
