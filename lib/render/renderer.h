@@ -162,7 +162,7 @@ private:
     // Photon batches: per-thread buffers of the photons that landed, then one sorted list.
     tbb::enumerable_thread_specific<std::vector<PhotonHit>> thread_hits_;
     std::vector<PhotonHit> batch_hits_;
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> batch_order_; // (Morton key, index)
+    std::vector<std::uint64_t> batch_order_; // Morton key << index bits | index
 
     std::atomic<std::uint64_t> passes_{0};
     std::atomic<std::uint64_t> photons_emitted_{0};
