@@ -83,6 +83,19 @@ Box3 SphereGeometry::prepare(const Affine &transform) {
 
 bool SphereGeometry::test(const Data &data, RayQuery &query) { return test_sphere(data, 0, query); }
 
+double SphereGeometry::hit_lower_bound(const Data &s, const RayQuery &query) {
+    const Vec3 f = query.org - s.center;
+    const double b = dot(f, query.dir);
+    const double ff = dot(f, f);
+    // c = |f|^2 - r^2 less its rounding error: positive only when the origin is surely outside.
+    const double c = ff - s.radius * s.radius - 4 * DBL_EPSILON * ff;
+    if (!(c > 0)) return 0;
+    if (b >= 0) return INFINITY; // outside and receding (test_sphere's first exit)
+    // The near root c' / (-b + sqrt(b^2 - a c')) is at least c' / (-2 b), and c' >= c; the
+    // last factor covers the rounding of this quotient.
+    return c / (-2 * b) * (1 - 4 * DBL_EPSILON);
+}
+
 RTCGeometry SphereGeometry::create_embree(RTCDevice device, const EmbreeFrame &frame) {
     data_.frame = frame;
     return new_user_geometry<Data, test_sphere>(device, data_, 1, sphere_bounds);

@@ -18,10 +18,12 @@ namespace {
 // least 1/64 of the scene box's volume (a box wider than a quarter of the scene's on every
 // axis), at most 8 of them, the largest first. A BVH cannot cull such a box, and in it the box
 // would widen the nodes above everything else.
+constexpr size_t max_direct_spheres = 8;
+
 std::vector<uint32_t> big_sphere_ids(const std::vector<std::unique_ptr<Geometry>> &geometries,
                                               const Box3 &scene_box) {
     constexpr double min_volume_fraction = 1.0 / 64;
-    constexpr size_t max_direct = 8;
+    constexpr size_t max_direct = max_direct_spheres;
     const Vec3 extent = scene_box.upper - scene_box.lower;
     const double scene_volume = extent.x * extent.y * extent.z;
     std::vector<std::pair<double, uint32_t>> big;
@@ -204,7 +206,9 @@ bool Scene::start_query(const ppm_ray &ray, bool any_hit, RayQuery &query, RTCRa
             if (o < lo || o > hi) return false;
             continue;
         }
-        double ta = (lo - o) / d, tb = (hi - o) / d;
+        // A reciprocal rounds t by an ulp more than a division; the box's padding covers that.
+        const double inv_d = 1.0 / d;
+        double ta = (lo - o) * inv_d, tb = (hi - o) * inv_d;
         if (ta > tb) std::swap(ta, tb);
         t0 = std::max(t0, ta);
         t1 = std::min(t1, tb);
@@ -213,7 +217,7 @@ bool Scene::start_query(const ppm_ray &ray, bool any_hit, RayQuery &query, RTCRa
 
     query.t_shift = t0;
     const Vec3 start = query.org + query.dir * t0 - frame_.center;
-    const Vec3 unit = query.dir / query.dir_length;
+    const Vec3 unit = query.dir * (1.0 / query.dir_length);
     embree_ray.org_x = static_cast<float>(start.x);
     embree_ray.org_y = static_cast<float>(start.y);
     embree_ray.org_z = static_cast<float>(start.z);
@@ -236,10 +240,21 @@ void Scene::intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv) const {
     rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    // The big spheres first: a hit there shortens the ray Embree traverses.
-    for (const DirectSphere &sphere : direct_spheres_)
-        if (SphereGeometry::test(*sphere.data, query)) {
-            query.hit.geom_id = sphere.geom_id;
+    // The big spheres first, as they shorten the ray Embree traverses, and nearest first by a
+    // lower bound of their hits: once one is hit, the rest mostly lie beyond it and are done
+    // (a room's walls are such spheres: a ray approaches three of them and hits one).
+    std::pair<double, const DirectSphere *> order[max_direct_spheres];
+    size_t candidates = 0;
+    for (const DirectSphere &sphere : direct_spheres_) {
+        const double bound = SphereGeometry::hit_lower_bound(*sphere.data, query);
+        if (!(bound <= query.hit.t)) continue;
+        size_t k = candidates++;
+        for (; k > 0 && order[k - 1].first > bound; --k) order[k] = order[k - 1];
+        order[k] = {bound, &sphere};
+    }
+    for (size_t k = 0; k < candidates && order[k].first <= query.hit.t; ++k)
+        if (SphereGeometry::test(*order[k].second->data, query)) {
+            query.hit.geom_id = order[k].second->geom_id;
             rayhit.ray.tfar = std::min(rayhit.ray.tfar, query.embree_tfar(query.hit.t));
         }
     rtcIntersect1(rtc_scene_, &query.embree, &rayhit);
