@@ -22,13 +22,19 @@ bool test_sphere(const SphereGeometry::Data &s, unsigned, RayQuery &query) {
     // Most rays leave most of a room's wall spheres this way, without a division or sqrt.
     if (b >= 0 && c > 4 * DBL_EPSILON * ff) return false;
     const double a = query.dir_length2, inv_a = query.inv_dir_length2;
-    // Both roots beyond the nearest hit so far: the quadratic a t^2 + 2 b t + c is positive at
-    // that t, which lies before its vertex -b/a. Skips the sqrt and division for the walls a
-    // ray meets after the one it hits; the margin covers the evaluation's rounding.
+    // No root in [tnear, hit.t], the interval still open: f(t) = a t^2 + 2 b t + c is convex,
+    // so it has none there when it is negative at both ends (inside the sphere all along:
+    // Hachisuka's room lies inside all six wall spheres, and a ray that has found one wall
+    // skips the walls it would leave the sphere through later), or when it is positive at
+    // the far end before its vertex (both roots beyond). The margins cover f's rounding.
+    // Saves the sqrt and division of every sphere but the ones that set hit.t.
     const double t_far = query.hit.t;
-    if (t_far < INFINITY && b < -a * t_far) {
-        const double value = (a * t_far + 2 * b) * t_far + c;
-        if (value > 1e-12 * (a * t_far * t_far + 2 * std::fabs(b) * t_far + ff + r2)) return false;
+    if (t_far < INFINITY) {
+        const auto f_at = [&](double t) { return (a * t + 2 * b) * t + c; };
+        const auto margin = [&](double t) { return 1e-12 * (a * t * t + 2 * std::fabs(b) * t + ff + r2); };
+        const double far_value = f_at(t_far), far_margin = margin(t_far);
+        if (far_value > far_margin && b < -a * t_far) return false;
+        if (far_value < -far_margin && f_at(query.tnear) < -margin(query.tnear)) return false;
     }
     const Vec3 l = f - query.dir * (b * inv_a);
     const double disc = a * (r2 - dot(l, l));
@@ -83,17 +89,15 @@ Box3 SphereGeometry::prepare(const Affine &transform) {
 
 bool SphereGeometry::test(const Data &data, RayQuery &query) { return test_sphere(data, 0, query); }
 
-double SphereGeometry::hit_lower_bound(const Data &s, const RayQuery &query) {
+double SphereGeometry::hit_estimate(const Data &s, const RayQuery &query) {
     const Vec3 f = query.org - s.center;
     const double b = dot(f, query.dir);
     const double ff = dot(f, f);
-    // c = |f|^2 - r^2 less its rounding error: positive only when the origin is surely outside.
-    const double c = ff - s.radius * s.radius - 4 * DBL_EPSILON * ff;
-    if (!(c > 0)) return 0;
-    if (b >= 0) return INFINITY; // outside and receding (test_sphere's first exit)
-    // The near root c' / (-b + sqrt(b^2 - a c')) is at least c' / (-2 b), and c' >= c; the
-    // last factor covers the rounding of this quotient.
-    return c / (-2 * b) * (1 - 4 * DBL_EPSILON);
+    const double c = ff - s.radius * s.radius;
+    if (c > 4 * DBL_EPSILON * ff) return b < 0 ? c / (-2 * b) : INFINITY; // entry; or receding
+    // From inside: the exit. Moving away from the centre it is near |c| / 2b, where a plane
+    // would have it; towards the centre it lies beyond the centre: last.
+    return b > 0 ? -c / (2 * b) : DBL_MAX;
 }
 
 RTCGeometry SphereGeometry::create_embree(RTCDevice device, const EmbreeFrame &frame) {

@@ -29,10 +29,10 @@ public:
     // The hit test Embree's callbacks run, for callers that test the sphere themselves: a hit
     // with t in [query.tnear, query.hit.t] is recorded (any hit when query.any_hit).
     static bool test(const Data &data, RayQuery &query);
-    // A lower bound on the t of every hit test() can record for the query's ray: 0 from
-    // inside or on the sphere, INFINITY for a ray leaving it behind. Lets a caller test many
-    // spheres nearest first and stop at the first bound beyond its nearest hit.
-    static double hit_lower_bound(const Data &data, const RayQuery &query);
+    // Roughly where test() would find a hit for the query's ray (exactly for a plane-like
+    // sphere; DBL_MAX for "far"), INFINITY when it surely finds none (outside and receding). Testing many
+    // spheres in this order finds the nearest hit early, and test() then skips the rest.
+    static double hit_estimate(const Data &data, const RayQuery &query);
 
 private:
     Vec3 source_center_;

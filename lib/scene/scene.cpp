@@ -240,19 +240,19 @@ void Scene::intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv) const {
     rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    // The big spheres first, as they shorten the ray Embree traverses, and nearest first by a
-    // lower bound of their hits: once one is hit, the rest mostly lie beyond it and are done
-    // (a room's walls are such spheres: a ray approaches three of them and hits one).
+    // The big spheres first, as they shorten the ray Embree traverses, and nearest first by an
+    // estimate of their hits: once one is hit, test() mostly skips the rest without a sqrt
+    // (a room's walls are such spheres: every ray meets all of them and hits one).
     std::pair<double, const DirectSphere *> order[max_direct_spheres];
     size_t candidates = 0;
     for (const DirectSphere &sphere : direct_spheres_) {
-        const double bound = SphereGeometry::hit_lower_bound(*sphere.data, query);
-        if (!(bound <= query.hit.t)) continue;
+        const double estimate = SphereGeometry::hit_estimate(*sphere.data, query);
+        if (estimate == INFINITY) continue;
         size_t k = candidates++;
-        for (; k > 0 && order[k - 1].first > bound; --k) order[k] = order[k - 1];
-        order[k] = {bound, &sphere};
+        for (; k > 0 && order[k - 1].first > estimate; --k) order[k] = order[k - 1];
+        order[k] = {estimate, &sphere};
     }
-    for (size_t k = 0; k < candidates && order[k].first <= query.hit.t; ++k)
+    for (size_t k = 0; k < candidates; ++k)
         if (SphereGeometry::test(*order[k].second->data, query)) {
             query.hit.geom_id = order[k].second->geom_id;
             rayhit.ray.tfar = std::min(rayhit.ray.tfar, query.embree_tfar(query.hit.t));
