@@ -89,15 +89,32 @@ Box3 SphereGeometry::prepare(const Affine &transform) {
 
 bool SphereGeometry::test(const Data &data, RayQuery &query) { return test_sphere(data, 0, query); }
 
-double SphereGeometry::hit_estimate(const Data &s, const RayQuery &query) {
-    const Vec3 f = query.org - s.center;
-    const double b = dot(f, query.dir);
-    const double ff = dot(f, f);
-    const double c = ff - s.radius * s.radius;
-    if (c > 4 * DBL_EPSILON * ff) return b < 0 ? c / (-2 * b) : INFINITY; // entry; or receding
-    // From inside: the exit. Moving away from the centre it is near |c| / 2b, where a plane
-    // would have it; towards the centre it lies beyond the centre: last.
-    return b > 0 ? -c / (2 * b) : DBL_MAX;
+int SphereGeometry::test_nearest(const Data *const *spheres, size_t count, RayQuery &query) {
+    // The first to test: the smallest estimate num / den (den > 0) of where a sphere is hit,
+    // exact for plane-like spheres: the entry c / -2b from outside, the exit |c| / 2b from
+    // inside when moving away from the centre. Exits towards the centre lie beyond it, and
+    // outside spheres left behind have no hit, so neither is chosen. Compared by
+    // cross-multiplying: no division.
+    size_t first = count;
+    double best_num = 0, best_den = 1;
+    for (size_t i = 0; i < count; ++i) {
+        const Vec3 f = query.org - spheres[i]->center;
+        const double b = dot(f, query.dir), ff = dot(f, f);
+        const double c = ff - spheres[i]->radius * spheres[i]->radius;
+        const bool outside = c > 4 * DBL_EPSILON * ff;
+        if (outside ? b >= 0 : b <= 0) continue;
+        const double num = std::fabs(c), den = 2 * std::fabs(b);
+        if (first == count || num * best_den < best_num * den) {
+            first = i;
+            best_num = num;
+            best_den = den;
+        }
+    }
+    int nearest = -1;
+    if (first < count && test_sphere(*spheres[first], 0, query)) nearest = static_cast<int>(first);
+    for (size_t i = 0; i < count; ++i)
+        if (i != first && test_sphere(*spheres[i], 0, query)) nearest = static_cast<int>(i);
+    return nearest;
 }
 
 RTCGeometry SphereGeometry::create_embree(RTCDevice device, const EmbreeFrame &frame) {

@@ -14,16 +14,14 @@ namespace ppm {
 
 namespace {
 
-// The spheres that stay out of the BVH (see Scene::direct_spheres_): those whose box takes at
+// The spheres that stay out of the BVH (see Scene::direct_sphere_ids_): those whose box takes at
 // least 1/64 of the scene box's volume (a box wider than a quarter of the scene's on every
 // axis), at most 8 of them, the largest first. A BVH cannot cull such a box, and in it the box
 // would widen the nodes above everything else.
-constexpr size_t max_direct_spheres = 8;
-
 std::vector<uint32_t> big_sphere_ids(const std::vector<std::unique_ptr<Geometry>> &geometries,
                                               const Box3 &scene_box) {
     constexpr double min_volume_fraction = 1.0 / 64;
-    constexpr size_t max_direct = max_direct_spheres;
+    constexpr size_t max_direct = 8;
     const Vec3 extent = scene_box.upper - scene_box.lower;
     const double scene_volume = extent.x * extent.y * extent.z;
     std::vector<std::pair<double, uint32_t>> big;
@@ -151,12 +149,12 @@ void Scene::commit() {
     rtcSetSceneFlags(rtc, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(rtc, RTC_BUILD_QUALITY_HIGH);
     try {
-        direct_spheres_.clear();
-        const std::vector<uint32_t> big = big_sphere_ids(geometries_, bounds);
-        for (uint32_t id : big)
-            direct_spheres_.push_back({id, &static_cast<const SphereGeometry &>(*geometries_[id]).data()});
+        direct_sphere_ids_ = big_sphere_ids(geometries_, bounds);
+        direct_sphere_data_.clear();
+        for (uint32_t id : direct_sphere_ids_)
+            direct_sphere_data_.push_back(&static_cast<const SphereGeometry &>(*geometries_[id]).data());
         for (size_t id = 0; id < geometries_.size(); ++id) {
-            if (std::find(big.begin(), big.end(), id) != big.end()) continue;
+            if (std::find(direct_sphere_ids_.begin(), direct_sphere_ids_.end(), id) != direct_sphere_ids_.end()) continue;
             RTCGeometry g = geometries_[id]->create_embree(device, frame_);
             context_->check_embree("creating Embree geometry");
             if (!g) fail(PPM_ERROR_OUT_OF_MEMORY, "creating Embree geometry failed");
@@ -240,23 +238,12 @@ void Scene::intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv) const {
     rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    // The big spheres first, as they shorten the ray Embree traverses, and nearest first by an
-    // estimate of their hits: once one is hit, test() mostly skips the rest without a sqrt
-    // (a room's walls are such spheres: every ray meets all of them and hits one).
-    std::pair<double, const DirectSphere *> order[max_direct_spheres];
-    size_t candidates = 0;
-    for (const DirectSphere &sphere : direct_spheres_) {
-        const double estimate = SphereGeometry::hit_estimate(*sphere.data, query);
-        if (estimate == INFINITY) continue;
-        size_t k = candidates++;
-        for (; k > 0 && order[k - 1].first > estimate; --k) order[k] = order[k - 1];
-        order[k] = {estimate, &sphere};
+    // The big spheres first: a hit there shortens the ray Embree traverses.
+    const int nearest = SphereGeometry::test_nearest(direct_sphere_data_.data(), direct_sphere_data_.size(), query);
+    if (nearest >= 0) {
+        query.hit.geom_id = direct_sphere_ids_[nearest];
+        rayhit.ray.tfar = std::min(rayhit.ray.tfar, query.embree_tfar(query.hit.t));
     }
-    for (size_t k = 0; k < candidates; ++k)
-        if (SphereGeometry::test(*order[k].second->data, query)) {
-            query.hit.geom_id = order[k].second->geom_id;
-            rayhit.ray.tfar = std::min(rayhit.ray.tfar, query.embree_tfar(query.hit.t));
-        }
     rtcIntersect1(rtc_scene_, &query.embree, &rayhit);
     if (!query.found) return write_miss(hit);
 
@@ -276,8 +263,8 @@ bool Scene::occluded(const ppm_ray &ray) const {
     RayQuery query;
     RTCRay embree_ray;
     if (!start_query(ray, true, query, embree_ray)) return false;
-    for (const DirectSphere &sphere : direct_spheres_)
-        if (SphereGeometry::test(*sphere.data, query)) return true;
+    for (const SphereGeometry::Data *sphere : direct_sphere_data_)
+        if (SphereGeometry::test(*sphere, query)) return true;
     rtcOccluded1(rtc_scene_, &query.embree, &embree_ray);
     return query.found;
 }

@@ -71,11 +71,8 @@ private:
     // Spheres whose box holds much of the scene's (Hachisuka's walls of radius 1e5): every ray
     // overlaps them, so they stay out of the BVH, where their boxes would hide everything else
     // from the culling, and every query tests them directly.
-    struct DirectSphere {
-        uint32_t geom_id;
-        const SphereGeometry::Data *data;
-    };
-    std::vector<DirectSphere> direct_spheres_;
+    std::vector<uint32_t> direct_sphere_ids_;
+    std::vector<const SphereGeometry::Data *> direct_sphere_data_; // of the same spheres
 
     RTCScene rtc_scene_ = nullptr;
     bool committed_ = false;
