@@ -434,7 +434,7 @@ PPM_API void ppm_renderer_release(ppm_renderer renderer);
  *   "initial_radius_pixels" double automatic radius in pixel footprints > 0   default 1
  *   "max_depth"             int    scattering events per path, 1 .. 1000      default 16
  *   "seed"                  int    random sequence                            default 0
- *   "hit_point_search"      string "kdtree" (nanoflann) or "grid" (hashed)    default "kdtree"
+ *   "hit_point_search"      string "grid" (hashed) or "kdtree" (nanoflann)    default "grid"
  *   "direct_lighting"       int    1: light sources by shadow rays; 0: by photons default 1
  * Integer keys also accept set_double with a whole number. mode, seed, direct_lighting and
  * the initial radius settings are fixed after the first pass (INVALID_OPERATION); unknown keys, wrong types and

@@ -30,7 +30,7 @@ class Renderer(Handle):
     Settings (keyword arguments here, or :meth:`set` / :meth:`get`; see ppm.h):
     ``mode`` ("sppm" | "ppm"), ``photons_per_pass``, ``alpha``, ``initial_radius``,
     ``initial_radius_pixels``, ``max_depth``, ``seed``, ``hit_point_search``
-    ("kdtree" | "grid"), ``direct_lighting`` (1: shadow rays, 0: photons only). mode, seed,
+    ("grid" | "kdtree"), ``direct_lighting`` (1: shadow rays, 0: photons only). mode, seed,
     direct_lighting and the initial radius are fixed after the first pass.
 
     The scene's lights, materials and textures are read at creation; later scene changes
