@@ -9,18 +9,34 @@ namespace ppm {
 
 namespace {
 
+// The ray's terms for one sphere: the quadratic |org + t dir - centre|^2 - r^2 =
+// a t^2 + 2 b t + c with a = |dir|^2, and |f|^2 for error bounds.
+struct SphereTerms {
+    Vec3 f; // org - centre
+    double b, ff, r2, c;
+};
+
+SphereTerms sphere_terms(const SphereGeometry::Data &s, const RayQuery &query) {
+    SphereTerms t;
+    t.f = query.org - s.center;
+    t.b = dot(t.f, query.dir);
+    t.ff = dot(t.f, t.f);
+    t.r2 = s.radius * s.radius;
+    t.c = t.ff - t.r2;
+    return t;
+}
+
+// Outside the sphere (beyond the rounding of c): then both roots have the sign of -b.
+bool surely_outside(const SphereTerms &t) { return t.c > 4 * DBL_EPSILON * t.ff; }
+
 // Roots of |org + t dir - c|^2 = r^2 in the cancellation-free form of "Precision Improvements
 // for Ray/Sphere Intersection" (Haines et al., Ray Tracing Gems, ch. 7).
-bool test_sphere(const SphereGeometry::Data &s, unsigned, RayQuery &query) {
-    const Vec3 f = query.org - s.center;
-    const double b = dot(f, query.dir);
-    const double ff = dot(f, f);
-    const double r2 = s.radius * s.radius;
-    const double c = ff - r2;
-    // Outside the sphere (beyond the rounding of c) and moving away from its centre: both roots
-    // are behind the origin (their product c/a > 0, their sum -2b/a <= 0) and tnear >= 0.
-    // Most rays leave most of a room's wall spheres this way, without a division or sqrt.
-    if (b >= 0 && c > 4 * DBL_EPSILON * ff) return false;
+bool test_sphere_terms(const SphereTerms &terms, RayQuery &query) {
+    const Vec3 &f = terms.f;
+    const double b = terms.b, ff = terms.ff, r2 = terms.r2, c = terms.c;
+    // Outside and moving away from the centre: both roots are behind the origin (their product
+    // c/a > 0, their sum -2b/a <= 0) and tnear >= 0. No division or sqrt.
+    if (b >= 0 && surely_outside(terms)) return false;
     const double a = query.dir_length2, inv_a = query.inv_dir_length2;
     // No root in [tnear, hit.t], the interval still open: f(t) = a t^2 + 2 b t + c is convex,
     // so it has none there when it is negative at both ends (inside the sphere all along:
@@ -48,6 +64,10 @@ bool test_sphere(const SphereGeometry::Data &s, unsigned, RayQuery &query) {
             return true;
         }
     return false;
+}
+
+bool test_sphere(const SphereGeometry::Data &s, unsigned, RayQuery &query) {
+    return test_sphere_terms(sphere_terms(s, query), query);
 }
 
 void sphere_bounds(const RTCBoundsFunctionArguments *args) {
@@ -94,26 +114,29 @@ int SphereGeometry::test_nearest(const Data *const *spheres, size_t count, RayQu
     // exact for plane-like spheres: the entry c / -2b from outside, the exit |c| / 2b from
     // inside when moving away from the centre. Exits towards the centre lie beyond it, and
     // outside spheres left behind have no hit, so neither is chosen. Compared by
-    // cross-multiplying: no division.
+    // cross-multiplying: no division. The terms of the first 8 spheres are kept for the tests.
+    constexpr size_t kKept = 8;
+    SphereTerms kept[kKept];
     size_t first = count;
     double best_num = 0, best_den = 1;
     for (size_t i = 0; i < count; ++i) {
-        const Vec3 f = query.org - spheres[i]->center;
-        const double b = dot(f, query.dir), ff = dot(f, f);
-        const double c = ff - spheres[i]->radius * spheres[i]->radius;
-        const bool outside = c > 4 * DBL_EPSILON * ff;
-        if (outside ? b >= 0 : b <= 0) continue;
-        const double num = std::fabs(c), den = 2 * std::fabs(b);
+        const SphereTerms t = sphere_terms(*spheres[i], query);
+        if (i < kKept) kept[i] = t;
+        if (surely_outside(t) ? t.b >= 0 : t.b <= 0) continue;
+        const double num = std::fabs(t.c), den = 2 * std::fabs(t.b);
         if (first == count || num * best_den < best_num * den) {
             first = i;
             best_num = num;
             best_den = den;
         }
     }
+    const auto test = [&](size_t i) {
+        return test_sphere_terms(i < kKept ? kept[i] : sphere_terms(*spheres[i], query), query);
+    };
     int nearest = -1;
-    if (first < count && test_sphere(*spheres[first], 0, query)) nearest = static_cast<int>(first);
+    if (first < count && test(first)) nearest = static_cast<int>(first);
     for (size_t i = 0; i < count; ++i)
-        if (i != first && test_sphere(*spheres[i], 0, query)) nearest = static_cast<int>(i);
+        if (i != first && test(i)) nearest = static_cast<int>(i);
     return nearest;
 }
 
