@@ -265,14 +265,34 @@ void tree_in_parts_matches_brute_force(void **) {
         HitPointTree tree;
         tree.build(points.data(), points.size());
         assert_int_equal(tree.size(), points.size());
+        // The grid builds in parallel too (atomic counts and placement, then sorted buckets).
+        HitPointGrid grid;
+        grid.build(points.data(), points.size());
+        assert_int_equal(grid.size(), points.size());
+        assert_true(grid.cell_entries() >= points.size());
         for (const Vec3 &photon : photons) {
             const Found expected = brute_force(points, photon);
             assert_same(expected, search(tree, photon));
+            assert_same(expected, search(grid, photon));
             pairs += expected.size();
         }
     });
     print_message("%zu (photon, hit point) pairs\n", pairs);
     assert_true(pairs > 1000);
+}
+
+// A few balls far larger than the rest: the grid's cells then follow the largest radius (a
+// ball spans at most 5 cells per axis) and the big balls are listed in up to 125 cells, each
+// found once by any photon inside them.
+void few_huge_radii_among_small_ones(void **) {
+    test_rng rng{18};
+    std::vector<HitPoint> points;
+    for (int i = 0; i < 4000; ++i) points.push_back(hit_point(random_in_box(rng, {-4, -4, -4}, {4, 4, 4}), 1e-4));
+    for (int i = 0; i < 3; ++i) points.push_back(hit_point(random_in_box(rng, {-2, -2, -2}, {2, 2, 2}), 4.0));
+    std::vector<Vec3> photons;
+    for (int i = 0; i < 3000; ++i) photons.push_back(random_in_box(rng, {-6, -6, -6}, {6, 6, 6}));
+    for (int i = 0; i < 300; ++i) photons.push_back(points[i * 13].position);
+    assert_true(check_against_brute_force(points, photons) > 500);
 }
 
 void rebuild_replaces_the_points(void **) {
@@ -342,6 +362,7 @@ int main(void) {
         cmocka_unit_test(one_point),
         cmocka_unit_test(duplicates_are_each_found_once),
         cmocka_unit_test(tree_in_parts_matches_brute_force),
+        cmocka_unit_test(few_huge_radii_among_small_ones),
         cmocka_unit_test(rebuild_replaces_the_points),
         cmocka_unit_test(non_finite_photons_find_nothing),
         cmocka_unit_test(queries_do_not_allocate),
