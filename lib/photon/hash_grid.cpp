@@ -22,7 +22,7 @@ namespace {
 constexpr int kMaxAcross = 5;
 // The typical radius is the mean over an evenly spaced sample of this many hit points.
 constexpr std::size_t kRadiusSamples = 4096;
-// Cells are this many typical radii wide. Wide cells list each hit point in fewer cells (1-3
+// Cells are this many typical radii wide. Wide cells list each hit point in fewer cells (~2
 // at 8) and a photon reads more candidates, but they are contiguous and cached: in the render
 // benchmark (smallppm, 1M photons per pass) widths of 2, 4, 8 and 16 radii gave 0.53, 0.64,
 // 0.66 and 0.60 M photon paths/s.
@@ -71,7 +71,8 @@ void HitPointGrid::for_each_bucket(const Point &p, F &&f) const {
     const CellRange range = cells_of(p);
     // Distinct cells may share a bucket; a point is listed there once, or a photon would
     // count it twice.
-    std::uint64_t seen[kMaxAcross * kMaxAcross * kMaxAcross];
+    // One more per axis than the widths allow, should rounding stretch a range by a cell.
+    std::uint64_t seen[(kMaxAcross + 1) * (kMaxAcross + 1) * (kMaxAcross + 1)];
     int seen_count = 0;
     for (std::int64_t i = range.lo[0]; i <= range.hi[0]; ++i)
         for (std::int64_t j = range.lo[1]; j <= range.hi[1]; ++j)
@@ -84,11 +85,15 @@ void HitPointGrid::for_each_bucket(const Point &p, F &&f) const {
 }
 
 void HitPointGrid::build(const HitPoint *points, std::size_t count) {
-    points_.resize(count);
+    // Empty until built: a build that throws leaves a grid that finds nothing.
+    points_.clear();
     cell_points_.clear();
     bucket_start_.clear();
     max_r2_ = 0;
     if (count == 0) return;
+    if (count > UINT32_MAX)
+        fail(PPM_ERROR_OUT_OF_MEMORY, "the hit point grid takes at most 2^32 - 1 points, not " + std::to_string(count));
+    points_.resize(count);
 
     using Range = tbb::blocked_range<std::size_t>;
     const Bounds bounds = tbb::parallel_reduce(
@@ -111,7 +116,8 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     // Rounding: cells_of() pads each radius by a relative 1e-9 (for the rounding of dist2)
     // and by a few ulps of the coordinates' magnitude (for p +- r).
     const double magnitude = std::max(max_abs_component(bounds.box.lower), max_abs_component(bounds.box.upper));
-    pad_ = 4.0 * DBL_EPSILON * magnitude;
+    // The floor covers photons whose dist2 underflows to 0 (differences below ~1e-162).
+    pad_ = std::max(4.0 * DBL_EPSILON * magnitude, 0x1p-530);
     const double max_r = std::sqrt(max_r2_) * (1.0 + 1e-9) + pad_;
     const std::size_t step = std::max<std::size_t>(1, count / kRadiusSamples);
     double sum_r = 0;
@@ -122,8 +128,14 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     const Vec3 lower = bounds.box.lower - Vec3{max_r, max_r, max_r};
     const Vec3 upper = bounds.box.upper + Vec3{max_r, max_r, max_r};
     const double extent = max_abs_component(upper - lower);
-    double width = std::max({kCellWidthInRadii * sum_r / samples, 2.0 * max_r / (kMaxAcross - 1), extent * 0x1p-30});
-    if (!(width > 0)) width = 1; // all hit points at one position, with zero radii
+    if (!std::isfinite(extent)) {
+        points_.clear();
+        invalid_argument("hit point coordinates or radii too large for the grid (extent " + std::to_string(extent) + ")");
+    }
+    // The largest ball spans 4 widths, a hair less with the margin, so rounding cannot push it
+    // over 5 cells; the last floor keeps 1 / width finite.
+    const double width = std::max({kCellWidthInRadii * sum_r / samples, 2.0 * max_r / (kMaxAcross - 1) * (1 + 1e-6),
+                                   extent * 0x1p-30, 0x1p-500});
     inv_cell_ = 1.0 / width;
     origin_ = lower;
     for (int a = 0; a < 3; ++a)
@@ -151,9 +163,12 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
         total += cursor[b].load(std::memory_order_relaxed);
         cursor[b].store(bucket_start_[b], std::memory_order_relaxed);
     }
-    if (total > UINT32_MAX)
+    if (total > UINT32_MAX) {
+        points_.clear();
+        bucket_start_.clear();
         fail(PPM_ERROR_OUT_OF_MEMORY, "the hit point grid would need " + std::to_string(total) +
                                           " cell entries, more than 2^32");
+    }
     bucket_start_[buckets] = static_cast<std::uint32_t>(total);
     cell_points_.resize(total);
     tbb::parallel_for(Range(0, count, 4096), [&](const Range &range) {
