@@ -295,6 +295,27 @@ void few_huge_radii_among_small_ones(void **) {
     assert_true(check_against_brute_force(points, photons) > 500);
 }
 
+// The renderer passes one hit point per pixel, absent (r2 < 0) where the camera path found no
+// surface to gather on: the structures skip those, and a set of only absent points finds nothing.
+void absent_points_are_never_found(void **) {
+    test_rng rng{19};
+    std::vector<HitPoint> points;
+    for (int i = 0; i < 3000; ++i) {
+        const double r = 0.05 + 0.2 * test_rng_uniform(&rng);
+        points.push_back(hit_point(random_in_box(rng, {0, 0, 0}, {4, 4, 4}), i % 3 == 0 ? -1.0 : r * r));
+    }
+    points.push_back(hit_point({1e6, 1e6, 1e6}, -1.0)); // far away: must not stretch the bounds
+    std::vector<Vec3> photons;
+    for (int i = 0; i < 2000; ++i) photons.push_back(random_in_box(rng, {-0.5, -0.5, -0.5}, {4.5, 4.5, 4.5}));
+    for (int i = 0; i < 300; ++i) photons.push_back(points[i * 3].position); // at absent points
+    const std::size_t pairs = check_against_brute_force(points, photons);
+    print_message("%zu (photon, hit point) pairs\n", pairs);
+    assert_true(pairs > 300);
+
+    const std::vector<HitPoint> none(50, hit_point({1, 2, 3}, -1.0));
+    assert_int_equal(check_against_brute_force(none, {{1, 2, 3}, {0, 0, 0}}), 0);
+}
+
 void rebuild_replaces_the_points(void **) {
     const std::vector<HitPoint> first = {hit_point({0, 0, 0}, 1), hit_point({5, 0, 0}, 1)};
     const std::vector<HitPoint> second = {hit_point({10, 0, 0}, 4)};
@@ -363,6 +384,7 @@ int main(void) {
         cmocka_unit_test(duplicates_are_each_found_once),
         cmocka_unit_test(tree_in_parts_matches_brute_force),
         cmocka_unit_test(few_huge_radii_among_small_ones),
+        cmocka_unit_test(absent_points_are_never_found),
         cmocka_unit_test(rebuild_replaces_the_points),
         cmocka_unit_test(non_finite_photons_find_nothing),
         cmocka_unit_test(queries_do_not_allocate),

@@ -86,6 +86,7 @@ void HitPointGrid::for_each_bucket(const Point &p, F &&f) const {
 
 void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     // Empty until built: a build that throws leaves a grid that finds nothing.
+    size_ = 0;
     points_.clear();
     cell_points_.clear();
     bucket_start_.clear();
@@ -94,6 +95,7 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     if (count > UINT32_MAX)
         fail(PPM_ERROR_OUT_OF_MEMORY, "the hit point grid takes at most 2^32 - 1 points, not " + std::to_string(count));
     points_.resize(count);
+    size_ = count;
 
     using Range = tbb::blocked_range<std::size_t>;
     const Bounds bounds = tbb::parallel_reduce(
@@ -101,6 +103,7 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
         [&](const Range &range, Bounds b) {
             for (std::size_t i = range.begin(); i < range.end(); ++i) {
                 points_[i] = {points[i].position, points[i].r2};
+                if (!points[i].present()) continue;
                 b.box.extend(points[i].position);
                 b.max_r2 = std::max(b.max_r2, points[i].r2);
             }
@@ -112,6 +115,10 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
             return a;
         });
     max_r2_ = bounds.max_r2;
+    if (bounds.box.empty()) { // every point absent
+        points_.clear();
+        return;
+    }
 
     // Rounding: cells_of() pads each radius by a relative 1e-9 (for the rounding of dist2)
     // and by a few ulps of the coordinates' magnitude (for p +- r).
@@ -122,7 +129,12 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     const std::size_t step = std::max<std::size_t>(1, count / kRadiusSamples);
     double sum_r = 0;
     std::size_t samples = 0;
-    for (std::size_t i = 0; i < count; i += step, ++samples) sum_r += std::sqrt(points[i].r2);
+    for (std::size_t i = 0; i < count; i += step)
+        if (points[i].present()) {
+            sum_r += std::sqrt(points[i].r2);
+            ++samples;
+        }
+    if (samples == 0) samples = 1; // the sample missed the few present points: width from max_r
     // Cells several typical radii wide, but never so narrow that a ball spans more than
     // kMaxAcross cells per axis, nor so narrow that cell coordinates pass 2^30.
     const Vec3 lower = bounds.box.lower - Vec3{max_r, max_r, max_r};
@@ -130,6 +142,7 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     const double extent = max_abs_component(upper - lower);
     if (!std::isfinite(extent)) {
         points_.clear();
+        size_ = 0;
         invalid_argument("hit point coordinates or radii too large for the grid (extent " + std::to_string(extent) + ")");
     }
     // The largest ball spans 4 widths, a hair less with the margin, so rounding cannot push it
@@ -154,7 +167,8 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     });
     tbb::parallel_for(Range(0, count, 4096), [&](const Range &range) {
         for (std::size_t i = range.begin(); i < range.end(); ++i)
-            for_each_bucket(points_[i], [&](std::uint64_t b) { cursor[b].fetch_add(1, std::memory_order_relaxed); });
+            if (points_[i].r2 >= 0)
+                for_each_bucket(points_[i], [&](std::uint64_t b) { cursor[b].fetch_add(1, std::memory_order_relaxed); });
     });
     bucket_start_.resize(buckets + 1);
     std::uint64_t total = 0;
@@ -165,6 +179,7 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     }
     if (total > UINT32_MAX) {
         points_.clear();
+        size_ = 0;
         bucket_start_.clear();
         fail(PPM_ERROR_OUT_OF_MEMORY, "the hit point grid would need " + std::to_string(total) +
                                           " cell entries, more than 2^32");
@@ -173,9 +188,10 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     cell_points_.resize(total);
     tbb::parallel_for(Range(0, count, 4096), [&](const Range &range) {
         for (std::size_t i = range.begin(); i < range.end(); ++i)
-            for_each_bucket(points_[i], [&](std::uint64_t b) {
-                cell_points_[cursor[b].fetch_add(1, std::memory_order_relaxed)] = static_cast<std::uint32_t>(i);
-            });
+            if (points_[i].r2 >= 0)
+                for_each_bucket(points_[i], [&](std::uint64_t b) {
+                    cell_points_[cursor[b].fetch_add(1, std::memory_order_relaxed)] = static_cast<std::uint32_t>(i);
+                });
     });
     tbb::parallel_for(Range(0, buckets, 16384), [&](const Range &range) {
         for (std::size_t b = range.begin(); b < range.end(); ++b)

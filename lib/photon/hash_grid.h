@@ -23,12 +23,12 @@ namespace ppm {
 
 class HitPointGrid {
 public:
-    // Rebuilds the grid over points[0, count), count < 2^32, on the calling task arena's
-    // threads. Positions and radii are copied, so the array may change or go away afterwards;
-    // visitors receive indices into it. Not thread-safe.
+    // Rebuilds the grid over the present points of points[0, count), count < 2^32, on the
+    // calling task arena's threads. Positions and radii are copied, so the array may change or
+    // go away afterwards; visitors receive indices into it. Not thread-safe.
     void build(const HitPoint *points, std::size_t count);
 
-    std::size_t size() const { return points_.size(); }
+    std::size_t size() const { return size_; } // points given to build(), present or not
     double max_r2() const { return max_r2_; }
     // Hit point entries over all cells (a point is listed once per cell its ball overlaps).
     std::size_t cell_entries() const { return cell_points_.size(); }
@@ -57,7 +57,8 @@ private:
     template <class F>
     void for_each_bucket(const Point &p, F &&f) const;
 
-    std::vector<Point> points_;               // as given
+    std::size_t size_ = 0;
+    std::vector<Point> points_;               // as given; empty when none is present
     std::vector<std::uint32_t> cell_points_;  // bucket by bucket, point indices
     std::vector<std::uint32_t> bucket_start_; // bucket b lists cell_points_[start[b], start[b+1])
     std::uint64_t bucket_mask_ = 0;

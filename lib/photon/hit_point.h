@@ -11,10 +11,12 @@ namespace ppm {
 
 // Where a camera path stopped on a non-specular surface, with the gather radius of its pixel.
 // The renderer keeps the rest (normal, BSDF, path weight) in a parallel array with the same
-// indices.
+// indices, one entry per pixel (slot), so a slot whose path found no such surface holds an
+// absent hit point: r2 < 0, which the search structures skip and no photon finds.
 struct HitPoint {
     Vec3 position;
-    double r2 = 0; // gather radius squared; finite and >= 0
+    double r2 = -1; // gather radius squared, finite; >= 0 when present
+    bool present() const { return r2 >= 0; }
 };
 
 // The one definition of "the photon is inside the hit point's radius", shared by the search

@@ -151,18 +151,18 @@ void HitPointTree::build(const HitPoint *points, std::size_t count) {
     Impl &m = *impl_;
     m.size = count;
     m.max_r2 = 0;
-    for (std::size_t i = 0; i < count; ++i) m.max_r2 = std::max(m.max_r2, points[i].r2);
-
-    m.entries.resize(count);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 16384), [&](const auto &range) {
-        for (std::size_t i = range.begin(); i < range.end(); ++i) {
-            const HitPoint &h = points[i];
-            m.entries[i] = {{h.position.x, h.position.y, h.position.z}, h.r2, static_cast<std::uint32_t>(i)};
-        }
-    });
-    const int parts = part_count(count);
+    // The present hit points only: absent ones (r2 < 0) stay out of the tree.
+    m.entries.clear();
+    for (std::size_t i = 0; i < count; ++i) {
+        const HitPoint &h = points[i];
+        if (!h.present()) continue;
+        m.max_r2 = std::max(m.max_r2, h.r2);
+        m.entries.push_back({{h.position.x, h.position.y, h.position.z}, h.r2, static_cast<std::uint32_t>(i)});
+    }
+    const std::size_t present = m.entries.size();
+    const int parts = part_count(present);
     std::vector<std::pair<Entry *, Entry *>> runs(parts);
-    split(m.entries.data(), m.entries.data() + count, parts, runs.data());
+    split(m.entries.data(), m.entries.data() + present, parts, runs.data());
     m.parts.resize(parts);
     for (auto &part : m.parts)
         if (!part) part = std::make_unique<Part>();

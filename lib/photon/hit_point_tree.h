@@ -23,9 +23,9 @@ public:
     HitPointTree(HitPointTree &&) noexcept;
     HitPointTree &operator=(HitPointTree &&) noexcept;
 
-    // Rebuilds the tree over points[0, count), count < 2^32. Positions and radii are copied,
-    // so the array may change or go away afterwards; visitors receive indices into it. Not
-    // thread-safe.
+    // Rebuilds the tree over the present points of points[0, count), count < 2^32. Positions
+    // and radii are copied, so the array may change or go away afterwards; visitors receive
+    // indices into it. Not thread-safe.
     void build(const HitPoint *points, std::size_t count);
 
     std::size_t size() const;

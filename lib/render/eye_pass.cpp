@@ -79,8 +79,7 @@ Rgb Renderer::direct_light(const VisiblePoint &vp, CounterRng &rng) const {
 void Renderer::trace_sppm_path(std::uint32_t pixel, std::uint32_t pass) {
     CounterRng rng(settings_.seed, kCameraStream, pass, pixel);
     ppm_ray ray = camera_ray(camera_, pixel, rng);
-    VisiblePoint &vp = visible_[pixel];
-    vp.valid = false;
+    VisiblePoint vp;
     Rgb weight(1.0), direct;
     double length = 0;
     SurfacePoint sp;
@@ -105,6 +104,7 @@ void Renderer::trace_sppm_path(std::uint32_t pixel, std::uint32_t pass) {
     }
     if (vp.valid) direct += direct_light(vp, rng);
     pass_direct_[pixel] = direct;
+    store_hit_point(pixel, vp);
 }
 
 // The visible points of one pixel's path in PPM mode, splitting at glass (both branches,
@@ -173,7 +173,9 @@ void Renderer::init_pixel_slots() {
     slot_pixel_.resize(pixels);
     for (std::uint32_t p = 0; p < pixels; ++p) slot_pixel_[p] = p;
     stats_.assign(pixels, PixelStatistics{});
-    visible_.assign(pixels, VisiblePoint{});
+    visible_.clear();
+    hit_points_.assign(pixels, HitPoint{});
+    gather_.resize(pixels);
     pass_direct_.assign(pixels, Rgb());
     flux_ = std::make_unique<FluxAccumulator>(pixels, flux_scale());
 }
@@ -228,6 +230,8 @@ void Renderer::eye_pass(std::uint32_t pass) {
         fixed_emitted_.insert(fixed_emitted_.end(), row_emitted[y].begin(), row_emitted[y].end());
     }
     stats_.assign(slot_pixel_.size(), PixelStatistics{});
+    hit_points_.assign(slot_pixel_.size(), HitPoint{});
+    gather_.resize(slot_pixel_.size());
     pass_direct_.assign(slot_pixel_.size(), Rgb());
     flux_ = std::make_unique<FluxAccumulator>(slot_pixel_.size(), flux_scale());
 }

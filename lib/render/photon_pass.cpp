@@ -59,7 +59,7 @@ void Renderer::deposit(const PhotonHit &photon) {
         // A photon arriving from behind the visible point's surface (the far side of a thin
         // wall, the inside of a closed object) does not light it.
         if (dot(g.normal, photon.direction) >= 0) return;
-        flux_->add(g.slot, photon.flux * g.lobe.at(-dot(g.shading_normal, photon.direction)));
+        flux_->add(index, photon.flux * g.lobe.at(-dot(g.shading_normal, photon.direction)));
     };
     if (settings_.search == RenderSettings::Search::Grid)
         grid_.query(photon.position, visit);
@@ -133,7 +133,7 @@ void Renderer::gather_sorted() {
 }
 
 void Renderer::photon_pass(std::uint32_t pass) {
-    if (render_scene_.lights().empty() || render_scene_.total_power().is_black() || hit_points_.empty()) return;
+    if (render_scene_.lights().empty() || render_scene_.total_power().is_black() || present_hit_points_ == 0) return;
     const std::uint64_t count = settings_.photons_per_pass;
     scene_->context().run([&] {
         for (std::uint64_t begin = 0; begin < count && !cancelled(); begin += kBatchPhotons) {

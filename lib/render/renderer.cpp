@@ -7,6 +7,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <chrono>
@@ -67,48 +68,60 @@ void Renderer::render_pass() {
     commit_pass();
 }
 
-// The valid visible points, in slot order, as hit points to search and the data deposit()
-// reads: compacted block by block in parallel (a serial pass over the ~250-byte visible
-// points took a third of the search's build time).
-void Renderer::build_search() {
-    constexpr std::size_t kBlock = 16384;
-    const std::size_t slots = visible_.size(), blocks = (slots + kBlock - 1) / kBlock;
-    std::vector<std::size_t> block_start(blocks + 1, 0);
-    std::vector<Box3> block_bounds(blocks);
-    std::vector<double> block_max_r2(blocks, 0.0);
-    scene_->context().run([&] {
-        tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
-            std::size_t valid = 0;
-            for (std::size_t slot = b * kBlock, end = std::min(slots, slot + kBlock); slot < end; ++slot)
-                valid += visible_[slot].valid;
-            block_start[b + 1] = valid;
-        });
-        for (std::size_t b = 0; b < blocks; ++b) block_start[b + 1] += block_start[b];
-        hit_points_.resize(block_start[blocks]);
-        gather_.resize(block_start[blocks]);
-        tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
-            std::size_t out = block_start[b];
-            for (std::size_t slot = b * kBlock, end = std::min(slots, slot + kBlock); slot < end; ++slot) {
-                const VisiblePoint &vp = visible_[slot];
-                if (!vp.valid) continue;
-                const double r2 = stats_[slot].r2 > 0 ? stats_[slot].r2 : vp.initial_r2;
-                hit_points_[out] = {vp.p, r2};
-                const double side = vp.wo_local.z >= 0 ? 1.0 : -1.0;
-                gather_[out] = {vp.normal, vp.frame.n * side, vp.bsdf.fixed_wo(vp.wo_local, vp.weight),
-                                static_cast<std::uint32_t>(slot)};
-                block_bounds[b].extend(vp.p);
-                block_max_r2[b] = std::max(block_max_r2[b], r2);
-                ++out;
-            }
-        });
-    });
-    gather_bounds_ = Box3();
-    double max_r2 = 0;
-    for (std::size_t b = 0; b < blocks; ++b) {
-        gather_bounds_.extend(block_bounds[b]);
-        max_r2 = std::max(max_r2, block_max_r2[b]);
+void Renderer::store_hit_point(std::uint32_t slot, const VisiblePoint &vp) {
+    if (!vp.valid) {
+        hit_points_[slot] = HitPoint{};
+        return;
     }
-    const double pad = std::sqrt(max_r2) * (1 + 1e-9) + 1e-12 * gather_bounds_.diagonal();
+    hit_points_[slot] = {vp.p, stats_[slot].r2 > 0 ? stats_[slot].r2 : vp.initial_r2};
+    const double side = vp.wo_local.z >= 0 ? 1.0 : -1.0;
+    gather_[slot] = {vp.normal, vp.frame.n * side, vp.bsdf.fixed_wo(vp.wo_local, vp.weight)};
+}
+
+namespace {
+
+struct HitPointBounds {
+    Box3 box;
+    double max_r2 = 0;
+    std::size_t present = 0;
+};
+
+} // namespace
+
+// The search over this pass's hit points, one per slot (absent ones are skipped). SPPM's camera
+// paths stored theirs; PPM's fixed visible points are stored here, with this pass's radii.
+void Renderer::build_search() {
+    using Range = tbb::blocked_range<std::size_t>;
+    const std::size_t slots = hit_points_.size();
+    HitPointBounds bounds;
+    scene_->context().run([&] {
+        if (settings_.mode == RenderSettings::Mode::Ppm)
+            tbb::parallel_for(Range(0, slots, 4096), [&](const Range &range) {
+                for (std::size_t slot = range.begin(); slot < range.end(); ++slot)
+                    store_hit_point(static_cast<std::uint32_t>(slot), visible_[slot]);
+            });
+        bounds = tbb::parallel_reduce(
+            Range(0, slots, 16384), HitPointBounds{},
+            [&](const Range &range, HitPointBounds b) {
+                for (std::size_t slot = range.begin(); slot < range.end(); ++slot) {
+                    const HitPoint &h = hit_points_[slot];
+                    if (!h.present()) continue;
+                    b.box.extend(h.position);
+                    b.max_r2 = std::max(b.max_r2, h.r2);
+                    ++b.present;
+                }
+                return b;
+            },
+            [](HitPointBounds a, const HitPointBounds &b) {
+                a.box.extend(b.box);
+                a.max_r2 = std::max(a.max_r2, b.max_r2);
+                a.present += b.present;
+                return a;
+            });
+    });
+    present_hit_points_ = bounds.present;
+    gather_bounds_ = bounds.box;
+    const double pad = std::sqrt(bounds.max_r2) * (1 + 1e-9) + 1e-12 * gather_bounds_.diagonal();
     gather_bounds_.lower -= Vec3{pad, pad, pad};
     gather_bounds_.upper += Vec3{pad, pad, pad};
     // In the context's arena: the structures build on the context's workers.
@@ -128,7 +141,8 @@ void Renderer::commit_pass() {
             for (std::size_t slot = range.begin(); slot < range.end(); ++slot) {
                 PixelStatistics &s = stats_[slot];
                 const PassPhotons photons = flux_->take(slot);
-                if (visible_[slot].valid && s.r2 == 0) s.r2 = visible_[slot].initial_r2;
+                // The first pass's radius: the hit point's (the initial radius while s.r2 == 0).
+                if (hit_points_[slot].present() && s.r2 == 0) s.r2 = hit_points_[slot].r2;
                 progressive_update(s, photons, alpha);
                 s.direct += pass_direct_[slot];
             }

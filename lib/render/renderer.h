@@ -62,7 +62,6 @@ struct GatherPoint {
     Vec3 normal;         // geometric, on the camera's side: photons from behind are rejected
     Vec3 shading_normal; // on the side of wo: a photon's cos(wi) is -dot(it, direction)
     FixedWoLobe lobe;    // the camera path's weight times the BSDF at this wo
-    std::uint32_t slot;
 };
 
 // A photon arriving at a surface where it may be gathered, buffered so that a batch of them
@@ -119,6 +118,8 @@ private:
     double flux_scale() const; // for the FluxAccumulator
     void photon_pass(std::uint32_t pass);
     void direct_pass(std::uint32_t pass); // PPM: direct light again at the fixed points
+    // The slot's hit point and gather data for this pass (absent unless vp.valid).
+    void store_hit_point(std::uint32_t slot, const VisiblePoint &vp);
     void build_search();
     void commit_pass();
     bool cancelled() const { return cancel_requested_.load(std::memory_order_relaxed); }
@@ -149,12 +150,14 @@ private:
     // Slots: one per pixel in SPPM, one per split camera path in PPM (set by the first pass).
     std::vector<std::uint32_t> slot_pixel_;
     std::vector<PixelStatistics> stats_;
-    // This pass: visible point and direct light per slot, and the searchable hit points.
+    // This pass: direct light per slot, and the visible points (PPM only: fixed by the first
+    // pass; SPPM stores its points straight into hit_points_ and gather_).
     std::vector<VisiblePoint> visible_;
     std::vector<Rgb> pass_direct_;
     std::vector<Rgb> fixed_emitted_; // PPM: emission seen along each split path (constant)
-    std::vector<HitPoint> hit_points_;    // the valid visible points' positions and radii ...
-    std::vector<GatherPoint> gather_;      // ... and what deposit() needs of them
+    std::vector<HitPoint> hit_points_;    // per slot: position and radius (absent: no point) ...
+    std::vector<GatherPoint> gather_;      // ... and what deposit() needs of it
+    std::size_t present_hit_points_ = 0;
     HitPointGrid grid_;
     HitPointTree tree_;
     std::unique_ptr<FluxAccumulator> flux_;
