@@ -26,14 +26,6 @@ public:
 
     const Data &data() const { return data_; } // world space, valid after commit
 
-    // The hit test Embree's callbacks run, for callers that test the sphere themselves: a hit
-    // with t in [query.tnear, query.hit.t] is recorded (any hit when query.any_hit).
-    static bool test(const Data &data, RayQuery &query);
-    // test() on each of spheres[0, count), the likeliest nearest first, so that test() skips
-    // most others without a sqrt (a room's walls: every ray meets them all and hits one).
-    // Returns the index of the sphere whose hit was recorded last (the nearest), or -1.
-    static int test_nearest(const Data *const *spheres, size_t count, RayQuery &query);
-
 private:
     Vec3 source_center_;
     double source_radius_;

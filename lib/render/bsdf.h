@@ -88,6 +88,9 @@ class Bsdf {
 public:
     enum class Type : uint8_t { Diffuse, Mirror, Dielectric, Coated };
 
+    // Black diffuse: scatters nothing (a placeholder that needs no validation).
+    Bsdf() = default;
+
     // Factories validate their arguments and throw ppm::Error (invalid argument):
     // reflectances must be finite and in [0, 1] per channel (energy conservation), indices
     // of refraction finite and > 0.
@@ -131,7 +134,6 @@ public:
     double pdf(const Vec3 &wo, const Vec3 &wi) const;
 
 private:
-    Bsdf() = default;
     double coat_specular_probability(double fresnel_o) const;
 
     Type type_ = Type::Diffuse;

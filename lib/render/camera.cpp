@@ -49,6 +49,8 @@ Camera::Camera(const CameraSettings &s) {
     width_ = s.width;
     height_ = s.height;
     aspect_ = double(s.width) / double(s.height);
+    x_scale_ = 2.0 * tan_half_fov_ / width_;
+    y_scale_ = 2.0 * tan_half_fov_ / aspect_ / height_;
     aperture_radius_ = s.aperture_radius;
     focus_distance_ = s.focus_distance;
     if (!(s.near_clip >= 0 && std::isfinite(s.near_clip)))
@@ -58,11 +60,13 @@ Camera::Camera(const CameraSettings &s) {
 
 CameraRay Camera::generate_ray(double x, double y, double lens_u, double lens_v) const {
     // Local direction to the film position on the plane z = 1 (Mitsuba's sample_to_camera).
-    const double px = (1.0 - 2.0 * x / width_) * tan_half_fov_;
-    const double py = (1.0 - 2.0 * y / height_) * tan_half_fov_ / aspect_;
+    const double px = tan_half_fov_ - x * x_scale_;
+    const double py = tan_half_fov_ / aspect_ - y * y_scale_;
     if (aperture_radius_ <= 0) {
-        const Vec3 d = normalize(left_ * px + up_ * py + forward_);
-        return {origin_, d, near_clip_ / dot(d, forward_)};
+        // d has unit length along the view axis, so the near plane lies at near_clip * |d|.
+        const Vec3 d = left_ * px + up_ * py + forward_;
+        const double length_d = std::sqrt(dot(d, d));
+        return {origin_, d * (1.0 / length_d), near_clip_ * length_d};
     }
     double ax, ay;
     square_to_uniform_disk_concentric(lens_u, lens_v, &ax, &ay);

@@ -20,9 +20,15 @@ constexpr std::uint8_t kDirectStream = 2; // PPM: direct light at the fixed poin
 constexpr int kSplitBudget = 16;
 
 ppm_ray camera_ray(const Camera &camera, std::uint32_t pixel, CounterRng &rng) {
-    const double x = pixel % camera.width() + rng.uniform();
-    const double y = pixel / camera.width() + rng.uniform();
-    const double lens_u = rng.uniform(), lens_v = rng.uniform();
+    const std::uint32_t width = static_cast<std::uint32_t>(camera.width()), row = pixel / width;
+    const double x = (pixel - row * width) + rng.uniform();
+    const double y = row + rng.uniform();
+    // A pinhole draws no lens sample (one counter block less per pixel).
+    double lens_u = 0.5, lens_v = 0.5;
+    if (camera.is_thin_lens()) {
+        lens_u = rng.uniform();
+        lens_v = rng.uniform();
+    }
     const CameraRay cr = camera.generate_ray(x, y, lens_u, lens_v);
     ppm_ray ray;
     cr.origin.store(ray.org);

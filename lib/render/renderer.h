@@ -51,7 +51,7 @@ struct VisiblePoint {
     double p_error = 0;
     Frame frame;      // shading frame
     Vec3 wo_local;
-    Bsdf bsdf = Bsdf::diffuse(Rgb(0));
+    Bsdf bsdf;        // black until a point is stored
     Rgb weight;       // camera path throughput up to this point
     double initial_r2 = 0;
 };

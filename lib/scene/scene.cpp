@@ -21,7 +21,7 @@ namespace {
 std::vector<uint32_t> big_sphere_ids(const std::vector<std::unique_ptr<Geometry>> &geometries,
                                               const Box3 &scene_box) {
     constexpr double min_volume_fraction = 1.0 / 64;
-    constexpr size_t max_direct = 8;
+    constexpr size_t max_direct = SphereSet::kCapacity;
     const Vec3 extent = scene_box.upper - scene_box.lower;
     const double scene_volume = extent.x * extent.y * extent.z;
     std::vector<std::pair<double, uint32_t>> big;
@@ -150,9 +150,11 @@ void Scene::commit() {
     rtcSetSceneBuildQuality(rtc, RTC_BUILD_QUALITY_HIGH);
     try {
         direct_sphere_ids_ = big_sphere_ids(geometries_, bounds);
-        direct_sphere_data_.clear();
-        for (uint32_t id : direct_sphere_ids_)
-            direct_sphere_data_.push_back(&static_cast<const SphereGeometry &>(*geometries_[id]).data());
+        direct_spheres_.clear();
+        for (uint32_t id : direct_sphere_ids_) {
+            const SphereGeometry::Data &sphere = static_cast<const SphereGeometry &>(*geometries_[id]).data();
+            direct_spheres_.add(sphere.center, sphere.radius);
+        }
         for (size_t id = 0; id < geometries_.size(); ++id) {
             if (std::find(direct_sphere_ids_.begin(), direct_sphere_ids_.end(), id) != direct_sphere_ids_.end()) continue;
             RTCGeometry g = geometries_[id]->create_embree(device, frame_);
@@ -239,7 +241,7 @@ void Scene::intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv) const {
     rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     // The big spheres first: a hit there shortens the ray Embree traverses.
-    const int nearest = SphereGeometry::test_nearest(direct_sphere_data_.data(), direct_sphere_data_.size(), query);
+    const int nearest = direct_spheres_.intersect(query);
     if (nearest >= 0) {
         query.hit.geom_id = direct_sphere_ids_[nearest];
         rayhit.ray.tfar = std::min(rayhit.ray.tfar, query.embree_tfar(query.hit.t));
@@ -263,8 +265,7 @@ bool Scene::occluded(const ppm_ray &ray) const {
     RayQuery query;
     RTCRay embree_ray;
     if (!start_query(ray, true, query, embree_ray)) return false;
-    for (const SphereGeometry::Data *sphere : direct_sphere_data_)
-        if (SphereGeometry::test(*sphere, query)) return true;
+    if (direct_spheres_.occluded(query)) return true;
     rtcOccluded1(rtc_scene_, &query.embree, &embree_ray);
     return query.found;
 }

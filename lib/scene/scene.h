@@ -5,7 +5,7 @@
 #include <ppm/ppm.h>
 
 #include "core/context.h"
-#include "geometry/sphere_geometry.h"
+#include "geometry/sphere_set.h"
 #include "render/light.h"
 #include "render/material.h"
 #include "scene/geometry.h"
@@ -72,7 +72,7 @@ private:
     // overlaps them, so they stay out of the BVH, where their boxes would hide everything else
     // from the culling, and every query tests them directly.
     std::vector<uint32_t> direct_sphere_ids_;
-    std::vector<const SphereGeometry::Data *> direct_sphere_data_; // of the same spheres
+    SphereSet direct_spheres_; // the same spheres, by index in direct_sphere_ids_
 
     RTCScene rtc_scene_ = nullptr;
     bool committed_ = false;

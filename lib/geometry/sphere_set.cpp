@@ -1,0 +1,134 @@
+#include "geometry/sphere_set.h"
+
+#include "core/error.h"
+#include "geometry/sphere_test.h"
+
+#include <cfloat>
+#include <cmath>
+#include <cstring>
+
+namespace ppm {
+
+namespace {
+
+// Four lanes of doubles and their comparison masks (GCC/Clang vector extensions: AVX2 under
+// -march=native, two SSE2 halves otherwise). The compiler left the scalar loops unvectorised.
+typedef double Lanes4 __attribute__((vector_size(32)));
+typedef long long Mask4 __attribute__((vector_size(32)));
+
+Lanes4 load4(const double *p) {
+    Lanes4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+void store4(double *p, Lanes4 v) { std::memcpy(p, &v, sizeof v); }
+Lanes4 select4(Mask4 m, Lanes4 yes, Lanes4 no) { return (Lanes4)((m & (Mask4)yes) | (~m & (Mask4)no)); }
+Lanes4 abs4(Lanes4 v) { return select4(v < 0, -v, v); }
+
+// sphere_may_hit() on four lanes.
+Mask4 may_hit4(Lanes4 b, Lanes4 ff, Lanes4 r2, Lanes4 c, double a, double tnear, double t_far) {
+    const Lanes4 abs_b2 = 2 * abs4(b);
+    const Lanes4 far_value = (a * t_far + 2 * b) * t_far + c;
+    const Lanes4 far_margin = 1e-12 * (a * t_far * t_far + abs_b2 * t_far + ff + r2);
+    const Lanes4 near_value = (a * tnear + 2 * b) * tnear + c;
+    const Lanes4 near_margin = 1e-12 * (a * tnear * tnear + abs_b2 * tnear + ff + r2);
+    const Mask4 receding_outside = (b >= 0) & (c > 4 * DBL_EPSILON * ff);
+    const Mask4 roots_beyond = (far_value > far_margin) & (b < -a * t_far);
+    const Mask4 inside_all_along = (far_value < -far_margin) & (near_value < -near_margin);
+    return ~(receding_outside | roots_beyond | inside_all_along) & (r2 >= 0);
+}
+
+} // namespace
+
+struct SphereSet::Lanes {
+    alignas(64) double fx[kCapacity], fy[kCapacity], fz[kCapacity];
+    alignas(64) double b[kCapacity], ff[kCapacity], c[kCapacity];
+};
+
+void SphereSet::add(const Vec3 &center, double radius) {
+    if (count_ == kCapacity) fail(PPM_ERROR_INVALID_OPERATION, "a sphere set holds at most 8 spheres");
+    cx_[count_] = center.x;
+    cy_[count_] = center.y;
+    cz_[count_] = center.z;
+    radius2_[count_] = radius * radius;
+    ++count_;
+}
+
+void SphereSet::compute_terms(const RayQuery &query, Lanes &lanes) const {
+    const double ox = query.org.x, oy = query.org.y, oz = query.org.z;
+    const double dx = query.dir.x, dy = query.dir.y, dz = query.dir.z;
+    for (int i = 0; i < kCapacity; i += 4) {
+        const Lanes4 fx = ox - load4(cx_ + i), fy = oy - load4(cy_ + i), fz = oz - load4(cz_ + i);
+        const Lanes4 ff = fx * fx + fy * fy + fz * fz;
+        store4(lanes.fx + i, fx);
+        store4(lanes.fy + i, fy);
+        store4(lanes.fz + i, fz);
+        store4(lanes.b + i, fx * dx + fy * dy + fz * dz);
+        store4(lanes.ff + i, ff);
+        store4(lanes.c + i, ff - load4(radius2_ + i));
+    }
+}
+
+void SphereSet::may_hit(const RayQuery &query, const Lanes &lanes, bool *out) const {
+    const double a = query.dir_length2, tnear = query.tnear, t_far = query.hit.t;
+    for (int i = 0; i < kCapacity; i += 4) {
+        const Mask4 m = may_hit4(load4(lanes.b + i), load4(lanes.ff + i), load4(radius2_ + i), load4(lanes.c + i), a,
+                                 tnear, t_far);
+        for (int k = 0; k < 4; ++k) out[i + k] = m[k] != 0;
+    }
+}
+
+bool SphereSet::test_lane(const Lanes &lanes, int i, RayQuery &query) const {
+    if (radius2_[i] < 0) return false;
+    const SphereTerms terms{{lanes.fx[i], lanes.fy[i], lanes.fz[i]}, lanes.b[i], lanes.ff[i], radius2_[i], lanes.c[i]};
+    return test_sphere_terms(terms, query);
+}
+
+int SphereSet::intersect(RayQuery &query) const {
+    if (count_ == 0) return -1;
+    Lanes lanes;
+    compute_terms(query, lanes);
+    // Test first the sphere likely nearest: the smallest estimate of where it is hit, seen from
+    // the ray's start org + tnear dir, where the quadratic's terms are b' = b + a tnear and
+    // c' = f(tnear): |c'| / 2|b'| past the start, exact for plane-like spheres: the entry from
+    // outside when moving towards the centre (b' < 0), the exit from inside when moving away
+    // from it (b' > 0). Exits towards the centre lie beyond it, and outside spheres left behind
+    // have no hit, so neither is chosen. (From the origin instead, a camera ray clipped past a
+    // wall it starts behind would choose that wall and find its far side.) Its hit shortens
+    // the ray, and sphere_may_hit() then rules out most others.
+    const double a = query.dir_length2, tnear = query.tnear;
+    alignas(64) double estimate[kCapacity];
+    for (int i = 0; i < kCapacity; i += 4) {
+        const Lanes4 b = load4(lanes.b + i), c = load4(lanes.c + i), r2 = load4(radius2_ + i);
+        const Lanes4 b_start = b + a * tnear, c_start = (a * tnear + 2 * b) * tnear + c;
+        const Mask4 outside = c_start > 0;
+        const Mask4 towards_hit = (outside & (b_start < 0)) | (~outside & (b_start > 0));
+        const Lanes4 none = {INFINITY, INFINITY, INFINITY, INFINITY};
+        store4(estimate + i, select4(towards_hit & (r2 >= 0), abs4(c_start) / (2 * abs4(b_start)), none));
+    }
+    int first = 0;
+    for (int i = 1; i < kCapacity; ++i)
+        if (estimate[i] < estimate[first]) first = i;
+    const int tested = estimate[first] < INFINITY ? first : -1;
+    int nearest = -1;
+    if (tested >= 0 && test_lane(lanes, tested, query)) nearest = tested;
+
+    bool candidates[kCapacity];
+    may_hit(query, lanes, candidates);
+    for (int i = 0; i < count_; ++i)
+        if (candidates[i] && i != tested && test_lane(lanes, i, query)) nearest = i;
+    return nearest;
+}
+
+bool SphereSet::occluded(RayQuery &query) const {
+    if (count_ == 0) return false;
+    Lanes lanes;
+    compute_terms(query, lanes);
+    bool candidates[kCapacity];
+    may_hit(query, lanes, candidates);
+    for (int i = 0; i < count_; ++i)
+        if (candidates[i] && test_lane(lanes, i, query)) return true;
+    return false;
+}
+
+} // namespace ppm
