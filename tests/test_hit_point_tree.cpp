@@ -184,6 +184,34 @@ void photons_exactly_at_the_radius_count(void **) {
     }
 }
 
+// The same far from the origin with radii below single precision's resolution there (a float
+// ulp at 3e4 is 0.002): the grid's single-precision screening must not reject any of them.
+void photons_exactly_at_the_radius_far_from_the_origin(void **) {
+    test_rng rng{14};
+    const Vec3 centre{1e4, -3e4, 2e4};
+    std::vector<HitPoint> points;
+    std::vector<Vec3> photons;
+    std::vector<bool> inside;
+    for (int i = 0; i < 2000; ++i) {
+        const Vec3 p = centre + random_in_box(rng, {-1, -1, -1}, {1, 1, 1});
+        const Vec3 offset = Vec3{test_rng_uniform(&rng) - 0.5, test_rng_uniform(&rng) - 0.5,
+                                 test_rng_uniform(&rng) - 0.5} * 1e-3;
+        const Vec3 q = p + offset;
+        const double dist2 = distance2(q, p);
+        inside.push_back(i % 2 == 0);
+        points.push_back(hit_point(p, inside.back() ? dist2 : std::nextafter(dist2, 0.0)));
+        photons.push_back(q);
+    }
+    check_against_brute_force(points, photons);
+    HitPointGrid grid;
+    grid.build(points.data(), points.size());
+    for (std::uint32_t i = 0; i < points.size(); ++i) {
+        const Found found = search(grid, photons[i]);
+        const bool has_i = std::any_of(found.begin(), found.end(), [i](const auto &e) { return e.first == i; });
+        assert_int_equal(has_i, inside[i]);
+    }
+}
+
 void empty_structures_find_nothing(void **) {
     HitPointTree tree;
     HitPointGrid grid;
@@ -265,7 +293,7 @@ void tree_in_parts_matches_brute_force(void **) {
         HitPointTree tree;
         tree.build(points.data(), points.size());
         assert_int_equal(tree.size(), points.size());
-        // The grid builds in parallel too (atomic counts and placement, then sorted buckets).
+        // The grid builds in parallel too (atomic counts and placement).
         HitPointGrid grid;
         grid.build(points.data(), points.size());
         assert_int_equal(grid.size(), points.size());
@@ -379,6 +407,7 @@ int main(void) {
         cmocka_unit_test(random_points_with_random_radii_match_brute_force),
         cmocka_unit_test(points_on_surfaces_match_brute_force),
         cmocka_unit_test(photons_exactly_at_the_radius_count),
+        cmocka_unit_test(photons_exactly_at_the_radius_far_from_the_origin),
         cmocka_unit_test(empty_structures_find_nothing),
         cmocka_unit_test(one_point),
         cmocka_unit_test(duplicates_are_each_found_once),

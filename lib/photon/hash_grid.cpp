@@ -89,6 +89,7 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     size_ = 0;
     points_.clear();
     cell_points_.clear();
+    cell_screens_.clear();
     bucket_start_.clear();
     max_r2_ = 0;
     if (count == 0) return;
@@ -151,15 +152,25 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
                                    extent * 0x1p-30, 0x1p-500});
     inv_cell_ = 1.0 / width;
     origin_ = lower;
+
     for (int a = 0; a < 3; ++a)
         cells_[a] = static_cast<std::int64_t>(std::floor((upper[a] - origin_[a]) * inv_cell_)) + 1;
+    // Screening in single precision: a queried photon lies in the cells, so its coordinates
+    // relative to origin_ lie in [0, span]; rounding them to float moves each by at most
+    // 2^-24 span, a difference of two by 2^-23 span, a distance by sqrt(3) times that. Radii
+    // grow by twice that, by the same 1e-9 and pad as the cells, and squared radii by a
+    // relative 2^-20 for the float sum of squares and the rounding of r2 to float. Outside
+    // this range of spans floats would overflow or lose precision: no screening then.
+    const double span = static_cast<double>(std::max({cells_[0], cells_[1], cells_[2]})) * width;
+    screen_ = span > 1e-30 && span < 1e30;
+    screen_margin_ = 2.0 * 0x1p-23 * span + pad_;
 
     std::uint64_t buckets = 1;
     while (buckets < count || buckets < 64) buckets <<= 1;
     bucket_mask_ = buckets - 1;
 
     // Count the entries per bucket, turn the counts into starts, then place every point's
-    // entries. Placement order depends on scheduling, so each bucket is sorted afterwards.
+    // entries (in an order that depends on scheduling).
     std::vector<std::atomic<std::uint32_t>> cursor(buckets);
     tbb::parallel_for(std::uint64_t(0), buckets, std::uint64_t(65536), [&](std::uint64_t begin) {
         for (std::uint64_t b = begin, end = std::min(buckets, begin + 65536); b < end; ++b)
@@ -186,18 +197,26 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     }
     bucket_start_[buckets] = static_cast<std::uint32_t>(total);
     cell_points_.resize(total);
+    cell_screens_.resize(total);
     tbb::parallel_for(Range(0, count, 4096), [&](const Range &range) {
-        for (std::size_t i = range.begin(); i < range.end(); ++i)
-            if (points_[i].r2 >= 0)
-                for_each_bucket(points_[i], [&](std::uint64_t b) {
-                    cell_points_[cursor[b].fetch_add(1, std::memory_order_relaxed)] = static_cast<std::uint32_t>(i);
-                });
+        for (std::size_t i = range.begin(); i < range.end(); ++i) {
+            const Point &p = points_[i];
+            if (p.r2 < 0) continue;
+            const Screen screen = screen_of(p);
+            for_each_bucket(p, [&](std::uint64_t b) {
+                const std::uint32_t e = cursor[b].fetch_add(1, std::memory_order_relaxed);
+                cell_points_[e] = static_cast<std::uint32_t>(i);
+                cell_screens_[e] = screen;
+            });
+        }
     });
-    tbb::parallel_for(Range(0, buckets, 16384), [&](const Range &range) {
-        for (std::size_t b = range.begin(); b < range.end(); ++b)
-            if (bucket_start_[b + 1] - bucket_start_[b] > 1)
-                std::sort(cell_points_.begin() + bucket_start_[b], cell_points_.begin() + bucket_start_[b + 1]);
-    });
+}
+
+HitPointGrid::Screen HitPointGrid::screen_of(const Point &p) const {
+    const Vec3 q = p.position - origin_;
+    const double r = std::sqrt(p.r2) * (1.0 + 1e-9) + screen_margin_;
+    return {static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z),
+            static_cast<float>(r * r * (1.0 + 0x1p-20))};
 }
 
 void HitPointGrid::query(const Vec3 &photon, HitPointVisitor visit) const {
@@ -209,10 +228,22 @@ void HitPointGrid::query(const Vec3 &photon, HitPointVisitor visit) const {
         c[a] = static_cast<std::int64_t>(t);
     }
     const std::uint64_t b = bucket(c[0], c[1], c[2]);
-    for (std::uint32_t e = bucket_start_[b], end = bucket_start_[b + 1]; e < end; ++e) {
+    const std::uint32_t begin = bucket_start_[b], end = bucket_start_[b + 1];
+    const auto exact = [&](std::uint32_t e) {
         const std::uint32_t i = cell_points_[e];
         const double dist2 = distance2(photon, points_[i].position);
         if (within_radius(dist2, points_[i].r2)) visit(i, dist2);
+    };
+    if (!screen_) {
+        for (std::uint32_t e = begin; e < end; ++e) exact(e);
+        return;
+    }
+    const Vec3 q = photon - origin_;
+    const float x = static_cast<float>(q.x), y = static_cast<float>(q.y), z = static_cast<float>(q.z);
+    for (std::uint32_t e = begin; e < end; ++e) {
+        const Screen &s = cell_screens_[e];
+        const float dx = x - s.x, dy = y - s.y, dz = z - s.z;
+        if (dx * dx + dy * dy + dz * dz <= s.r2) exact(e);
     }
 }
 
