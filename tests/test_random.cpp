@@ -39,6 +39,9 @@ void uniforms_lie_in_the_half_open_unit_interval(void **) {
     assert_true(uniform_from_bits(~0ull) == 1.0 - std::ldexp(1.0, -53));
     assert_true(uniform_from_bits(~0ull) < 1.0);
     assert_true(uniform_from_bits(1ull << 63) == 0.5);
+    assert_true(uniform_from_bits32(0) == 0.0);
+    assert_true(uniform_from_bits32(~0u) == 1.0 - std::ldexp(1.0, -32));
+    assert_true(uniform_from_bits32(1u << 31) == 0.5);
     CounterRng rng(1, 0, 0, 0);
     for (int i = 0; i < 100000; ++i) {
         const double u = rng.uniform();
@@ -106,7 +109,8 @@ void neighbouring_numbers_are_uncorrelated(void **) {
         Draw a, b;
     } pairs[] = {
         {{7, 1, 0, 0, 0}, {7, 1, 0, 0, 1}},  // dimensions in one Philox block
-        {{7, 1, 0, 0, 1}, {7, 1, 0, 0, 2}},  // neighbouring blocks
+        {{7, 1, 0, 0, 2}, {7, 1, 0, 0, 3}},  // its other half
+        {{7, 1, 0, 0, 3}, {7, 1, 0, 0, 4}},  // neighbouring blocks
         {{7, 1, 0, 0, 5}, {7, 1, 0, 0, 12}}, // far dimensions
         {{7, 1, 0, 0, 0}, {7, 1, 0, 1, 0}},  // neighbouring samples
         {{7, 1, 0, 0, 0}, {7, 1, 1, 0, 0}},  // neighbouring passes
@@ -158,8 +162,9 @@ void numbers_are_reproducible_and_addressable(void **) {
     assert_true(CounterRng(42, 1, 6, 123456789012ull).uniform_at(0) != first);
     assert_true(CounterRng(42, 1, 5, 123456789013ull).uniform_at(0) != first);
     assert_true(CounterRng(42 + (1ull << 32), 1, 5, 123456789012ull).uniform_at(0) != first);
-    // Dimensions repeat after 2^25 (the block counter has 24 bits).
-    assert_true(fixed.uniform_at(1u << 25) == first);
+    // Dimensions repeat after 2^26 (the block counter has 24 bits).
+    assert_true(fixed.uniform_at(1u << 26) == first);
+    assert_true(fixed.uniform_at(1u << 25) != first);
 }
 
 // Samples drawn on any number of threads, in any order, are the same numbers.
