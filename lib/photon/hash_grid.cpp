@@ -27,6 +27,8 @@ constexpr std::size_t kRadiusSamples = 4096;
 // benchmark (smallppm, 1M photons per pass) widths of 2, 4, 8 and 16 radii gave 0.53, 0.64,
 // 0.66 and 0.60 M photon paths/s.
 constexpr double kCellWidthInRadii = 8;
+// The build lists entries and claims room in buckets by chunks of this many points.
+constexpr std::size_t kChunkPoints = 4096;
 
 struct Bounds {
     Box3 box;
@@ -169,17 +171,25 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     while (buckets < count || buckets < 64) buckets <<= 1;
     bucket_mask_ = buckets - 1;
 
-    // Count the entries per bucket, turn the counts into starts, then place every point's
-    // entries (in an order that depends on scheduling).
-    std::vector<std::atomic<std::uint32_t>> cursor(buckets);
+    // Each chunk of points lists its entries once, grouped by bucket locally, so that a
+    // bucket's count and its room are claimed with one atomic per chunk, not per entry (a
+    // locked add per entry waited for every scattered store before it). Entries are placed in
+    // an order that depends on scheduling.
+    const std::size_t chunk_count = (count + kChunkPoints - 1) / kChunkPoints;
+    if (chunks_.size() < chunk_count) chunks_.resize(chunk_count);
+    if (cursor_capacity_ < buckets) {
+        cursor_.reset(new std::atomic<std::uint32_t>[buckets]);
+        cursor_capacity_ = buckets;
+    }
+    std::atomic<std::uint32_t> *const cursor = cursor_.get();
     tbb::parallel_for(std::uint64_t(0), buckets, std::uint64_t(65536), [&](std::uint64_t begin) {
         for (std::uint64_t b = begin, end = std::min(buckets, begin + 65536); b < end; ++b)
             cursor[b].store(0, std::memory_order_relaxed);
     });
-    tbb::parallel_for(Range(0, count, 4096), [&](const Range &range) {
-        for (std::size_t i = range.begin(); i < range.end(); ++i)
-            if (points_[i].r2 >= 0)
-                for_each_bucket(points_[i], [&](std::uint64_t b) { cursor[b].fetch_add(1, std::memory_order_relaxed); });
+    tbb::parallel_for(std::size_t(0), chunk_count, [&](std::size_t c) {
+        Chunk &chunk = chunks_[c];
+        list_chunk(c * kChunkPoints, std::min(count, (c + 1) * kChunkPoints), chunk);
+        for (const BucketRun &run : chunk.runs) cursor[run.bucket].fetch_add(run.count, std::memory_order_relaxed);
     });
     bucket_start_.resize(buckets + 1);
     std::uint64_t total = 0;
@@ -198,18 +208,46 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     bucket_start_[buckets] = static_cast<std::uint32_t>(total);
     cell_points_.resize(total);
     cell_screens_.resize(total);
-    tbb::parallel_for(Range(0, count, 4096), [&](const Range &range) {
-        for (std::size_t i = range.begin(); i < range.end(); ++i) {
-            const Point &p = points_[i];
-            if (p.r2 < 0) continue;
-            const Screen screen = screen_of(p);
-            for_each_bucket(p, [&](std::uint64_t b) {
-                const std::uint32_t e = cursor[b].fetch_add(1, std::memory_order_relaxed);
-                cell_points_[e] = static_cast<std::uint32_t>(i);
-                cell_screens_[e] = screen;
-            });
+    tbb::parallel_for(std::size_t(0), chunk_count, [&](std::size_t c) {
+        Chunk &chunk = chunks_[c];
+        for (BucketRun &run : chunk.runs) run.next = cursor[run.bucket].fetch_add(run.count, std::memory_order_relaxed);
+        std::uint32_t screened = UINT32_MAX;
+        Screen screen{};
+        for (const std::uint64_t entry : chunk.entries) {
+            const auto point = static_cast<std::uint32_t>(entry);
+            if (point != screened) { // a point's entries are consecutive
+                screen = screen_of(points_[point]);
+                screened = point;
+            }
+            const std::uint32_t e = chunk.runs[entry >> 32].next++;
+            cell_points_[e] = point;
+            cell_screens_[e] = screen;
         }
     });
+}
+
+// Lists the entries of points [begin, end) as (run << 32 | point), a run being one bucket's
+// entries in the chunk, found through a small open-addressing table of the chunk's buckets.
+void HitPointGrid::list_chunk(std::size_t begin, std::size_t end, Chunk &chunk) const {
+    chunk.entries.clear();
+    chunk.runs.clear();
+    for (std::size_t i = begin; i < end; ++i)
+        if (points_[i].r2 >= 0)
+            for_each_bucket(points_[i], [&](std::uint64_t b) { chunk.entries.push_back(b << 32 | i); });
+    std::size_t slots = 16;
+    while (slots < 2 * chunk.entries.size()) slots <<= 1;
+    chunk.table.assign(slots, UINT32_MAX);
+    for (std::uint64_t &entry : chunk.entries) {
+        const std::uint64_t b = entry >> 32;
+        std::size_t slot = (b * 0x9E3779B97F4A7C15ull) >> 40 & (slots - 1);
+        while (chunk.table[slot] != UINT32_MAX && chunk.runs[chunk.table[slot]].bucket != b) slot = (slot + 1) & (slots - 1);
+        if (chunk.table[slot] == UINT32_MAX) {
+            chunk.table[slot] = static_cast<std::uint32_t>(chunk.runs.size());
+            chunk.runs.push_back({b, 0, 0});
+        }
+        ++chunk.runs[chunk.table[slot]].count;
+        entry = static_cast<std::uint64_t>(chunk.table[slot]) << 32 | (entry & 0xFFFFFFFFu);
+    }
 }
 
 HitPointGrid::Screen HitPointGrid::screen_of(const Point &p) const {

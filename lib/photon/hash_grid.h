@@ -19,8 +19,10 @@
 
 #include "photon/hit_point.h"
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace ppm {
@@ -60,6 +62,20 @@ private:
         std::int64_t lo[3], hi[3];
     };
 
+    // One bucket's entries in a chunk of points during the build.
+    struct BucketRun {
+        std::uint64_t bucket;
+        std::uint32_t count; // entries
+        std::uint32_t next;  // where the next one goes in cell_points_
+    };
+    // Scratch of one chunk of points, kept between builds so its memory is reused.
+    struct Chunk {
+        std::vector<std::uint64_t> entries; // run index << 32 | point index
+        std::vector<BucketRun> runs;
+        std::vector<std::uint32_t> table;   // open addressing: bucket -> run index
+    };
+    void list_chunk(std::size_t begin, std::size_t end, Chunk &chunk) const;
+
     std::uint64_t bucket(std::int64_t i, std::int64_t j, std::int64_t k) const;
     std::int64_t cell(double x, int axis) const;
     CellRange cells_of(const Point &p) const;
@@ -81,6 +97,10 @@ private:
     std::int64_t cells_[3] = {0, 0, 0};       // cells per axis
     double max_r2_ = 0;
     double pad_ = 0;                          // added to every radius against rounding
+    // Build scratch, reused: per-chunk entry lists and the buckets' counters.
+    std::vector<Chunk> chunks_;
+    std::unique_ptr<std::atomic<std::uint32_t>[]> cursor_;
+    std::uint64_t cursor_capacity_ = 0;
 };
 
 } // namespace ppm
