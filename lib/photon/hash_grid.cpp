@@ -58,7 +58,7 @@ std::int64_t HitPointGrid::cell(double x, int axis) const {
 
 // The cells overlapped by the cube around the point's ball, its radius padded so that a
 // photon the final test accepts (computed dist2 <= r2) always lies in one of them.
-HitPointGrid::CellRange HitPointGrid::cells_of(const Point &p) const {
+HitPointGrid::CellRange HitPointGrid::cells_of(const HitPoint &p) const {
     const double r = std::sqrt(p.r2) * (1.0 + 1e-9) + pad_;
     CellRange range;
     for (int a = 0; a < 3; ++a) {
@@ -69,7 +69,7 @@ HitPointGrid::CellRange HitPointGrid::cells_of(const Point &p) const {
 }
 
 template <class F>
-void HitPointGrid::for_each_bucket(const Point &p, F &&f) const {
+void HitPointGrid::for_each_bucket(const HitPoint &p, F &&f) const {
     const CellRange range = cells_of(p);
     // Distinct cells may share a bucket; a point is listed there once, or a photon would
     // count it twice.
@@ -89,15 +89,13 @@ void HitPointGrid::for_each_bucket(const Point &p, F &&f) const {
 void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     // Empty until built: a build that throws leaves a grid that finds nothing.
     size_ = 0;
-    points_.clear();
     cell_points_.clear();
-    cell_screens_.clear();
+    cell_copies_.clear();
     bucket_start_.clear();
     max_r2_ = 0;
     if (count == 0) return;
     if (count > UINT32_MAX)
         fail(PPM_ERROR_OUT_OF_MEMORY, "the hit point grid takes at most 2^32 - 1 points, not " + std::to_string(count));
-    points_.resize(count);
     size_ = count;
 
     using Range = tbb::blocked_range<std::size_t>;
@@ -105,7 +103,6 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
         Range(0, count, 16384), Bounds{},
         [&](const Range &range, Bounds b) {
             for (std::size_t i = range.begin(); i < range.end(); ++i) {
-                points_[i] = {points[i].position, points[i].r2};
                 if (!points[i].present()) continue;
                 b.box.extend(points[i].position);
                 b.max_r2 = std::max(b.max_r2, points[i].r2);
@@ -118,10 +115,7 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
             return a;
         });
     max_r2_ = bounds.max_r2;
-    if (bounds.box.empty()) { // every point absent
-        points_.clear();
-        return;
-    }
+    if (bounds.box.empty()) return; // every point absent
 
     // Rounding: cells_of() pads each radius by a relative 1e-9 (for the rounding of dist2)
     // and by a few ulps of the coordinates' magnitude (for p +- r).
@@ -144,7 +138,6 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     const Vec3 upper = bounds.box.upper + Vec3{max_r, max_r, max_r};
     const double extent = max_abs_component(upper - lower);
     if (!std::isfinite(extent)) {
-        points_.clear();
         size_ = 0;
         invalid_argument("hit point coordinates or radii too large for the grid (extent " + std::to_string(extent) + ")");
     }
@@ -157,15 +150,6 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
 
     for (int a = 0; a < 3; ++a)
         cells_[a] = static_cast<std::int64_t>(std::floor((upper[a] - origin_[a]) * inv_cell_)) + 1;
-    // Screening in single precision: a queried photon lies in the cells, so its coordinates
-    // relative to origin_ lie in [0, span]; rounding them to float moves each by at most
-    // 2^-24 span, a difference of two by 2^-23 span, a distance by sqrt(3) times that. Radii
-    // grow by twice that, by the same 1e-9 and pad as the cells, and squared radii by a
-    // relative 2^-20 for the float sum of squares and the rounding of r2 to float. Outside
-    // this range of spans floats would overflow or lose precision: no screening then.
-    const double span = static_cast<double>(std::max({cells_[0], cells_[1], cells_[2]})) * width;
-    screen_ = span > 1e-30 && span < 1e30;
-    screen_margin_ = 2.0 * 0x1p-23 * span + pad_;
 
     std::uint64_t buckets = 1;
     while (buckets < count || buckets < 64) buckets <<= 1;
@@ -188,7 +172,7 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     });
     tbb::parallel_for(std::size_t(0), chunk_count, [&](std::size_t c) {
         Chunk &chunk = chunks_[c];
-        list_chunk(c * kChunkPoints, std::min(count, (c + 1) * kChunkPoints), chunk);
+        list_chunk(points, c * kChunkPoints, std::min(count, (c + 1) * kChunkPoints), chunk);
         for (const BucketRun &run : chunk.runs) cursor[run.bucket].fetch_add(run.count, std::memory_order_relaxed);
     });
     bucket_start_.resize(buckets + 1);
@@ -199,7 +183,6 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
         cursor[b].store(bucket_start_[b], std::memory_order_relaxed);
     }
     if (total > UINT32_MAX) {
-        points_.clear();
         size_ = 0;
         bucket_start_.clear();
         fail(PPM_ERROR_OUT_OF_MEMORY, "the hit point grid would need " + std::to_string(total) +
@@ -207,33 +190,27 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     }
     bucket_start_[buckets] = static_cast<std::uint32_t>(total);
     cell_points_.resize(total);
-    cell_screens_.resize(total);
+    cell_copies_.resize(total);
     tbb::parallel_for(std::size_t(0), chunk_count, [&](std::size_t c) {
         Chunk &chunk = chunks_[c];
         for (BucketRun &run : chunk.runs) run.next = cursor[run.bucket].fetch_add(run.count, std::memory_order_relaxed);
-        std::uint32_t screened = UINT32_MAX;
-        Screen screen{};
         for (const std::uint64_t entry : chunk.entries) {
             const auto point = static_cast<std::uint32_t>(entry);
-            if (point != screened) { // a point's entries are consecutive
-                screen = screen_of(points_[point]);
-                screened = point;
-            }
             const std::uint32_t e = chunk.runs[entry >> 32].next++;
             cell_points_[e] = point;
-            cell_screens_[e] = screen;
+            cell_copies_[e] = points[point];
         }
     });
 }
 
 // Lists the entries of points [begin, end) as (run << 32 | point), a run being one bucket's
 // entries in the chunk, found through a small open-addressing table of the chunk's buckets.
-void HitPointGrid::list_chunk(std::size_t begin, std::size_t end, Chunk &chunk) const {
+void HitPointGrid::list_chunk(const HitPoint *points, std::size_t begin, std::size_t end, Chunk &chunk) const {
     chunk.entries.clear();
     chunk.runs.clear();
     for (std::size_t i = begin; i < end; ++i)
-        if (points_[i].r2 >= 0)
-            for_each_bucket(points_[i], [&](std::uint64_t b) { chunk.entries.push_back(b << 32 | i); });
+        if (points[i].present())
+            for_each_bucket(points[i], [&](std::uint64_t b) { chunk.entries.push_back(b << 32 | i); });
     std::size_t slots = 16;
     while (slots < 2 * chunk.entries.size()) slots <<= 1;
     chunk.table.assign(slots, UINT32_MAX);
@@ -250,15 +227,8 @@ void HitPointGrid::list_chunk(std::size_t begin, std::size_t end, Chunk &chunk) 
     }
 }
 
-HitPointGrid::Screen HitPointGrid::screen_of(const Point &p) const {
-    const Vec3 q = p.position - origin_;
-    const double r = std::sqrt(p.r2) * (1.0 + 1e-9) + screen_margin_;
-    return {static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z),
-            static_cast<float>(r * r * (1.0 + 0x1p-20))};
-}
-
 void HitPointGrid::query(const Vec3 &photon, HitPointVisitor visit) const {
-    if (points_.empty()) return;
+    if (cell_points_.empty()) return;
     std::int64_t c[3];
     for (int a = 0; a < 3; ++a) {
         const double t = std::floor((photon[a] - origin_[a]) * inv_cell_);
@@ -266,22 +236,10 @@ void HitPointGrid::query(const Vec3 &photon, HitPointVisitor visit) const {
         c[a] = static_cast<std::int64_t>(t);
     }
     const std::uint64_t b = bucket(c[0], c[1], c[2]);
-    const std::uint32_t begin = bucket_start_[b], end = bucket_start_[b + 1];
-    const auto exact = [&](std::uint32_t e) {
-        const std::uint32_t i = cell_points_[e];
-        const double dist2 = distance2(photon, points_[i].position);
-        if (within_radius(dist2, points_[i].r2)) visit(i, dist2);
-    };
-    if (!screen_) {
-        for (std::uint32_t e = begin; e < end; ++e) exact(e);
-        return;
-    }
-    const Vec3 q = photon - origin_;
-    const float x = static_cast<float>(q.x), y = static_cast<float>(q.y), z = static_cast<float>(q.z);
-    for (std::uint32_t e = begin; e < end; ++e) {
-        const Screen &s = cell_screens_[e];
-        const float dx = x - s.x, dy = y - s.y, dz = z - s.z;
-        if (dx * dx + dy * dy + dz * dz <= s.r2) exact(e);
+    for (std::uint32_t e = bucket_start_[b], end = bucket_start_[b + 1]; e < end; ++e) {
+        const HitPoint &p = cell_copies_[e];
+        const double dist2 = distance2(photon, p.position);
+        if (within_radius(dist2, p.r2)) visit(cell_points_[e], dist2);
     }
 }
 

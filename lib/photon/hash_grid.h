@@ -10,9 +10,9 @@
 // Cells are 8 mean radii wide (hash_grid.cpp says why), so a typical hit point is listed in
 // 1 to 8 cells (about 2 on average in the benchmark), and a ball spans at most 5 per axis.
 // Cells are hashed into a power-of-two table; each bucket is a run of entries holding the
-// point's index and a single-precision copy of its position and (widened) radius, so a
-// photon screens the candidates of its bucket from one contiguous array and reads a point's
-// exact double position only for the few within reach. Entries within a bucket are in no
+// point's index and a copy of its position and radius, so a photon tests the candidates of
+// its bucket from one contiguous array (reading each point from the caller's array, in image
+// order, missed the cache at nearly every candidate). Entries within a bucket are in no
 // particular order (placed by several threads): callers must not depend on the visiting order
 // (the renderer sums flux in fixed point).
 #pragma once
@@ -48,16 +48,6 @@ public:
     }
 
 private:
-    struct Point {
-        Vec3 position;
-        double r2;
-    };
-    // A cell entry's screening copy: position relative to origin_ and a squared radius widened
-    // to cover single precision's rounding (hash_grid.cpp), so the float test never rejects a
-    // photon the exact test accepts.
-    struct Screen {
-        float x, y, z, r2;
-    };
     struct CellRange {
         std::int64_t lo[3], hi[3];
     };
@@ -74,22 +64,18 @@ private:
         std::vector<BucketRun> runs;
         std::vector<std::uint32_t> table;   // open addressing: bucket -> run index
     };
-    void list_chunk(std::size_t begin, std::size_t end, Chunk &chunk) const;
+    void list_chunk(const HitPoint *points, std::size_t begin, std::size_t end, Chunk &chunk) const;
 
     std::uint64_t bucket(std::int64_t i, std::int64_t j, std::int64_t k) const;
     std::int64_t cell(double x, int axis) const;
-    CellRange cells_of(const Point &p) const;
-    Screen screen_of(const Point &p) const;
+    CellRange cells_of(const HitPoint &p) const;
     // Calls f(bucket) once for each distinct bucket of the cells the point's ball overlaps.
     template <class F>
-    void for_each_bucket(const Point &p, F &&f) const;
+    void for_each_bucket(const HitPoint &p, F &&f) const;
 
     std::size_t size_ = 0;
-    std::vector<Point> points_;               // as given; empty when none is present
     std::vector<std::uint32_t> cell_points_;  // bucket by bucket, point indices ...
-    std::vector<Screen> cell_screens_;        // ... and their screening copies
-    bool screen_ = false;                     // whether queries screen in single precision
-    double screen_margin_ = 0;                // added to every radius for the screening copies
+    std::vector<HitPoint> cell_copies_;       // ... and the points; both empty when none is present
     std::vector<std::uint32_t> bucket_start_; // bucket b lists cell_points_[start[b], start[b+1])
     std::uint64_t bucket_mask_ = 0;
     Vec3 origin_;                             // lower corner of the balls' bounds
