@@ -151,8 +151,12 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     for (int a = 0; a < 3; ++a)
         cells_[a] = static_cast<std::int64_t>(std::floor((upper[a] - origin_[a]) * inv_cell_)) + 1;
 
+    // A bucket per 4 points: cells 8 radii wide hold many points each (a radius spans a pixel
+    // or more), so occupied cells stay well below the buckets even as radii shrink, while the
+    // build's counters, zeroing and serial prefix sum are a quarter of a bucket per point's
+    // (eye pass 0.30 -> 0.28 s on smallppm; a bucket per 16 points gained little more).
     std::uint64_t buckets = 1;
-    while (buckets < count || buckets < 64) buckets <<= 1;
+    while (buckets < count / 4 || buckets < 64) buckets <<= 1;
     bucket_mask_ = buckets - 1;
 
     // Each chunk of points lists its entries once, grouped by bucket locally, so that a
