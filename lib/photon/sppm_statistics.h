@@ -84,7 +84,8 @@ public:
     std::uint64_t rejected() const { return rejected_.load(std::memory_order_relaxed); }
 
 private:
-    struct Cell {
+    // One cache line per pixel: a photon's four atomic adds then touch one line, not two.
+    struct alignas(64) Cell {
         std::atomic<std::uint64_t> m{0};
         std::atomic<std::uint64_t> low[3] = {{0}, {0}, {0}};
         std::atomic<std::uint32_t> wraps[3] = {{0}, {0}, {0}};

@@ -58,8 +58,8 @@ void Renderer::deposit(const PhotonHit &photon) {
         const GatherPoint &g = gather_[index];
         // A photon arriving from behind the visible point's surface (the far side of a thin
         // wall, the inside of a closed object) does not light it.
-        if (dot(g.normal, photon.direction) >= 0) return;
-        flux_->add(index, photon.flux * g.lobe.at(-dot(g.shading_normal, photon.direction)));
+        if (GatherPoint::dot(g.normal, photon.direction) >= 0) return;
+        flux_->add(index, photon.flux * g.lobe.at(-GatherPoint::dot(g.shading_normal, photon.direction)));
     };
     if (settings_.search == RenderSettings::Search::Grid)
         grid_.query(photon.position, visit);

@@ -75,7 +75,13 @@ void Renderer::store_hit_point(std::uint32_t slot, const VisiblePoint &vp) {
     }
     hit_points_[slot] = {vp.p, stats_[slot].r2 > 0 ? stats_[slot].r2 : vp.initial_r2};
     const double side = vp.wo_local.z >= 0 ? 1.0 : -1.0;
-    gather_[slot] = {vp.normal, vp.frame.n * side, vp.bsdf.fixed_wo(vp.wo_local, vp.weight)};
+    const Vec3 shading_normal = vp.frame.n * side;
+    GatherPoint &g = gather_[slot];
+    for (int a = 0; a < 3; ++a) {
+        g.normal[a] = static_cast<float>(vp.normal[a]);
+        g.shading_normal[a] = static_cast<float>(shading_normal[a]);
+    }
+    g.lobe = vp.bsdf.fixed_wo(vp.wo_local, vp.weight);
 }
 
 namespace {

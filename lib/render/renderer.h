@@ -56,13 +56,17 @@ struct VisiblePoint {
     double initial_r2 = 0;
 };
 
-// What a photon landing within a hit point's radius needs of its visible point, packed (a
-// VisiblePoint is about 250 bytes, and the photon pass reads these at random).
-struct GatherPoint {
-    Vec3 normal;         // geometric, on the camera's side: photons from behind are rejected
-    Vec3 shading_normal; // on the side of wo: a photon's cos(wi) is -dot(it, direction)
-    FixedWoLobe lobe;    // the camera path's weight times the BSDF at this wo
+// What a photon landing within a hit point's radius needs of its visible point, packed into
+// one cache line (a VisiblePoint is about 250 bytes, and the photon pass reads these at
+// random). The normals only decide sides and cosines, so single precision does.
+struct alignas(64) GatherPoint {
+    float normal[3];         // geometric, on the camera's side: photons from behind are rejected
+    float shading_normal[3]; // on the side of wo: a photon's cos(wi) is -dot(it, direction)
+    FixedWoLobe lobe;        // the camera path's weight times the BSDF at this wo
+
+    static double dot(const float n[3], const Vec3 &d) { return n[0] * d.x + n[1] * d.y + n[2] * d.z; }
 };
+static_assert(sizeof(GatherPoint) == 64, "a gather point fills one cache line");
 
 // A photon arriving at a surface where it may be gathered, buffered so that a batch of them
 // can be gathered in spatial order (hit points then stay in cache).
