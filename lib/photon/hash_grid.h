@@ -37,7 +37,7 @@ public:
     std::size_t size() const { return size_; } // points given to build(), present or not
     double max_r2() const { return max_r2_; }
     // Hit point entries over all cells (a point is listed once per cell its ball overlaps).
-    std::size_t cell_entries() const { return cell_points_.size(); }
+    std::size_t cell_entries() const { return bucket_start_.empty() ? 0 : bucket_start_.back(); }
 
     // Calls visit(index, dist2) once for every hit point with distance2(photon, position)
     // <= its r2, in no particular order. Thread-safe between builds.
@@ -75,8 +75,8 @@ private:
 
     std::size_t size_ = 0;
     std::vector<std::uint32_t> cell_points_;  // bucket by bucket, point indices ...
-    std::vector<HitPoint> cell_copies_;       // ... and the points; both empty when none is present
-    std::vector<std::uint32_t> bucket_start_; // bucket b lists cell_points_[start[b], start[b+1])
+    std::vector<HitPoint> cell_copies_;       // ... and the points (stale beyond the last bucket's end)
+    std::vector<std::uint32_t> bucket_start_; // bucket b lists cell_points_[start[b], start[b+1]); empty: no point
     std::uint64_t bucket_mask_ = 0;
     Vec3 origin_;                             // lower corner of the balls' bounds
     double inv_cell_ = 0;
