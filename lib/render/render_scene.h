@@ -21,7 +21,7 @@ struct SurfacePoint {
     Vec3 p, ng;     // ng as stored (not flipped)
     Frame frame;    // z = shading normal
     Vec3 wo_local;  // unit
-    Bsdf bsdf = Bsdf::diffuse(Rgb(0.5));
+    Bsdf bsdf;
     Rgb emitted;    // radiance the surface emits towards wo (area lights, front side)
 };
 
