@@ -45,6 +45,7 @@ Box3 SphereGeometry::prepare(const Affine &transform) {
     data_.axis[0] = normalize(x);
     data_.axis[1] = normalize(transform.vector({0, 1, 0}));
     data_.axis[2] = normalize(transform.vector({0, 0, 1}));
+    data_.rounding = 32 * DBL_EPSILON * (max_abs_component(data_.center) + data_.radius);
     Box3 box;
     box.extend(data_.center - Vec3{1, 1, 1} * data_.radius);
     box.extend(data_.center + Vec3{1, 1, 1} * data_.radius);
@@ -63,7 +64,7 @@ void SphereGeometry::describe_hit(const RayQuery &query, double tolerance, ppm_h
     p.store(hit.p);
     n.store(hit.ng);
     n.store(hit.ns);
-    hit.p_error = tolerance + 32 * DBL_EPSILON * (max_abs_component(data_.center) + data_.radius);
+    hit.p_error = tolerance + data_.rounding;
 }
 
 // Spherical coordinates of the normal in the object's frame: u = phi / 2 pi from its x axis

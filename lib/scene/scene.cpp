@@ -197,9 +197,15 @@ bool Scene::start_query(const ppm_ray &ray, bool any_hit, RayQuery &query, RTCRa
     query.dir_length = std::sqrt(query.dir_length2);
 
     // Clip to the padded scene box in double, so Embree's float ray starts near the geometry
-    // and its rounding stays relative to the scene's size, not to the origin's distance.
+    // and its rounding stays relative to the scene's size, not to the origin's distance. A ray
+    // starting inside the box (every ray a renderer spawns) starts at tnear either way; its far
+    // end stays as given, which changes nothing (no geometry lies outside the box) and saves
+    // three divisions.
     double t0 = ray.tnear, t1 = ray.tfar;
-    for (int axis = 0; axis < 3; ++axis) {
+    const bool starts_inside = query.org.x >= query_box_.lower.x && query.org.x <= query_box_.upper.x &&
+                               query.org.y >= query_box_.lower.y && query.org.y <= query_box_.upper.y &&
+                               query.org.z >= query_box_.lower.z && query.org.z <= query_box_.upper.z;
+    for (int axis = 0; axis < 3 && !starts_inside; ++axis) {
         const double o = query.org[axis], d = query.dir[axis];
         const double lo = query_box_.lower[axis], hi = query_box_.upper[axis];
         if (d == 0) {
@@ -217,7 +223,7 @@ bool Scene::start_query(const ppm_ray &ray, bool any_hit, RayQuery &query, RTCRa
 
     query.t_shift = t0;
     const Vec3 start = query.org + query.dir * t0 - frame_.center;
-    const Vec3 unit = query.dir * (1.0 / query.dir_length);
+    const Vec3 unit = query.dir * (query.dir_length * query.inv_dir_length2); // 1/|d| = |d|/|d|^2
     embree_ray.org_x = static_cast<float>(start.x);
     embree_ray.org_y = static_cast<float>(start.y);
     embree_ray.org_z = static_cast<float>(start.z);
@@ -249,8 +255,9 @@ void Scene::intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv) const {
     rtcIntersect1(rtc_scene_, &query.embree, &rayhit);
     if (!query.found) return write_miss(hit);
 
-    write_miss(hit);
+    // Every field is set below (describe_hit writes p, p_error, ng and ns).
     const Geometry &g = *geometries_[query.hit.geom_id];
+    hit.reserved = 0;
     hit.t = query.hit.t;
     hit.u = query.hit.u;
     hit.v = query.hit.v;
