@@ -194,18 +194,13 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     // Grown, never shrunk or cleared: resizing a cleared vector would first fill every entry
     // with a default, on one thread (~50 MB per pass in the benchmark). Entries past `total`
     // are stale and never read.
-    if (cell_points_.size() < total) {
-        cell_points_.resize(total);
-        cell_copies_.resize(total);
-    }
+    if (entries_.size() < total) entries_.resize(total);
     tbb::parallel_for(std::size_t(0), chunk_count, [&](std::size_t c) {
         Chunk &chunk = chunks_[c];
         for (BucketRun &run : chunk.runs) run.next = cursor[run.bucket].fetch_add(run.count, std::memory_order_relaxed);
         for (const std::uint64_t entry : chunk.entries) {
             const auto point = static_cast<std::uint32_t>(entry);
-            const std::uint32_t e = chunk.runs[entry >> 32].next++;
-            cell_points_[e] = point;
-            cell_copies_[e] = points[point];
+            entries_[chunk.runs[entry >> 32].next++] = {points[point].position, points[point].r2, point};
         }
     });
 }
@@ -244,9 +239,9 @@ void HitPointGrid::query(const Vec3 &photon, HitPointVisitor visit) const {
     }
     const std::uint64_t b = bucket(c[0], c[1], c[2]);
     for (std::uint32_t e = bucket_start_[b], end = bucket_start_[b + 1]; e < end; ++e) {
-        const HitPoint &p = cell_copies_[e];
-        const double dist2 = distance2(photon, p.position);
-        if (within_radius(dist2, p.r2)) visit(cell_points_[e], dist2);
+        const Entry &entry = entries_[e];
+        const double dist2 = distance2(photon, entry.position);
+        if (within_radius(dist2, entry.r2)) visit(entry.index, dist2);
     }
 }
 

@@ -56,7 +56,7 @@ private:
     struct BucketRun {
         std::uint64_t bucket;
         std::uint32_t count; // entries
-        std::uint32_t next;  // where the next one goes in cell_points_
+        std::uint32_t next;  // where the next one goes in entries_
     };
     // Scratch of one chunk of points, kept between builds so its memory is reused.
     struct Chunk {
@@ -74,9 +74,14 @@ private:
     void for_each_bucket(const HitPoint &p, F &&f) const;
 
     std::size_t size_ = 0;
-    std::vector<std::uint32_t> cell_points_;  // bucket by bucket, point indices ...
-    std::vector<HitPoint> cell_copies_;       // ... and the points (stale beyond the last bucket's end)
-    std::vector<std::uint32_t> bucket_start_; // bucket b lists cell_points_[start[b], start[b+1]); empty: no point
+    // A point listed in a cell: its copy and its index in the caller's array.
+    struct Entry {
+        Vec3 position;
+        double r2;
+        std::uint32_t index;
+    };
+    std::vector<Entry> entries_;              // bucket by bucket (stale beyond the last bucket's end)
+    std::vector<std::uint32_t> bucket_start_; // bucket b lists entries_[start[b], start[b+1]); empty: no point
     std::uint64_t bucket_mask_ = 0;
     Vec3 origin_;                             // lower corner of the balls' bounds
     double inv_cell_ = 0;
