@@ -2,11 +2,15 @@
 // total internal reflection, energy balance), the Lambert pdf, sampled albedos against the
 // analytic ones, reciprocity, and the radiance/importance asymmetry of refraction.
 #include "core/error.h"
+#include "math/sin_cos.h"
 #include "render/bsdf.h"
+#include "render/warp.h"
 
 #include "test_support.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 using namespace ppm;
 
@@ -422,6 +426,38 @@ void with_reflectance_keeps_the_coat(void **) {
                 !Bsdf::dielectric(1.5, 1).has_non_specular());
 }
 
+// The warps' sine and cosine (math/sin_cos.h) against libm, on a dense sweep and at the octant
+// boundaries where the reduction switches branches. For 2 pi u the reference angle is itself
+// rounded (half an ulp of 2 pi is 4.4e-16), which the second bound allows for.
+void warp_sine_and_cosine_match_libm(void **) {
+    const auto difference = [](double angle, double s, double c) {
+        return std::max(std::fabs(s - std::sin(angle)), std::fabs(c - std::cos(angle)));
+    };
+    double worst_quarter = 0, worst_turn = 0;
+    for (int i = 0; i <= 200000; ++i) {
+        const double x = (i / 100000.0 - 1.0) * (kPi / 4);
+        double s, c;
+        sin_cos_quarter(x, &s, &c);
+        worst_quarter = std::max(worst_quarter, difference(x, s, c));
+    }
+    std::vector<double> us;
+    for (int i = 0; i < 400000; ++i) us.push_back(i / 400000.0 + 0.3e-6);
+    for (int k = 0; k <= 8; ++k) {
+        us.push_back(std::nextafter(k / 8.0, 0.0));
+        us.push_back(k / 8.0);
+        us.push_back(std::nextafter(k / 8.0, 1.0));
+    }
+    for (double u : us) {
+        if (!(u >= 0 && u < 1)) continue;
+        double s, c;
+        sin_cos_2pi(u, &s, &c);
+        worst_turn = std::max(worst_turn, difference(2 * kPi * u, s, c));
+    }
+    print_message("largest difference from libm: %.3g within pi/4, %.3g for 2 pi u\n", worst_quarter, worst_turn);
+    assert_true(worst_quarter < 2.5e-16);
+    assert_true(worst_turn < 1e-15);
+}
+
 void invalid_parameters_are_rejected(void **) {
     expect_invalid_argument([] { Bsdf::diffuse({0.5, -0.1, 0.5}); });
     expect_invalid_argument([] { Bsdf::diffuse({0.5, 1.2, 0.5}); });
@@ -455,6 +491,7 @@ int main() {
         cmocka_unit_test(fixed_wo_lobe_matches_eval),
         cmocka_unit_test(back_side_of_opaque_materials_mirrors_the_front),
         cmocka_unit_test(with_reflectance_keeps_the_coat),
+        cmocka_unit_test(warp_sine_and_cosine_match_libm),
         cmocka_unit_test(invalid_parameters_are_rejected),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);

@@ -1,6 +1,7 @@
 #include "render/light.h"
 
 #include "core/error.h"
+#include "math/sin_cos.h"
 #include "render/warp.h"
 
 #include <cmath>
@@ -22,16 +23,19 @@ void check_point(const Vec3 &p, const char *name) {
 }
 
 Vec3 uniform_sphere(double u1, double u2) {
-    const double z = 1.0 - 2.0 * u1, r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = 2.0 * kPi * u2;
-    return {r * std::cos(phi), r * std::sin(phi), z};
+    const double z = 1.0 - 2.0 * u1, r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    double sin_phi, cos_phi;
+    sin_cos_2pi(u2, &sin_phi, &cos_phi);
+    return {r * cos_phi, r * sin_phi, z};
 }
 
 // Direction in a cone of half-angle acos(1 - one_minus_cos_max) around +z, uniform in solid angle.
 Vec3 uniform_cone(double u1, double u2, double one_minus_cos_max) {
     const double cos_theta = 1.0 - u1 * one_minus_cos_max;
     const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
-    const double phi = 2.0 * kPi * u2;
-    return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
+    double sin_phi, cos_phi;
+    sin_cos_2pi(u2, &sin_phi, &cos_phi);
+    return {sin_theta * cos_phi, sin_theta * sin_phi, cos_theta};
 }
 
 } // namespace

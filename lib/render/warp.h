@@ -3,6 +3,7 @@
 // lands on the same points in both renderers.
 #pragma once
 
+#include "math/sin_cos.h"
 #include "math/vec3.h"
 
 #include <algorithm>
@@ -21,16 +22,18 @@ inline void square_to_uniform_disk_concentric(double u, double v, double *x, dou
         *x = *y = 0;
         return;
     }
-    double r, phi;
+    // phi = pi/4 * b/a, or pi/2 - pi/4 * a/b, whose cosine and sine are the sine and cosine
+    // of pi/4 * a/b: either way an angle within [-pi/4, pi/4] to take sin and cos of.
+    double s, c;
     if (std::fabs(a) > std::fabs(b)) {
-        r = a;
-        phi = (kPi / 4.0) * (b / a);
+        sin_cos_quarter((kPi / 4.0) * (b / a), &s, &c);
+        *x = a * c;
+        *y = a * s;
     } else {
-        r = b;
-        phi = kPi / 2.0 - (kPi / 4.0) * (a / b);
+        sin_cos_quarter((kPi / 4.0) * (a / b), &s, &c);
+        *x = b * s;
+        *y = b * c;
     }
-    *x = r * std::cos(phi);
-    *y = r * std::sin(phi);
 }
 
 // Cosine-weighted upper hemisphere (z >= 0) by Malley's method: project the disk up.
