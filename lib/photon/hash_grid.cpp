@@ -22,11 +22,13 @@ namespace {
 constexpr int kMaxAcross = 5;
 // The typical radius is the mean over an evenly spaced sample of this many hit points.
 constexpr std::size_t kRadiusSamples = 4096;
-// Cells are this many typical radii wide. Wide cells list each hit point in fewer cells (~2
-// at 8) and a photon reads more candidates, but they are contiguous and cached: in the render
-// benchmark (smallppm, 1M photons per pass) widths of 2, 4, 8 and 16 radii gave 0.53, 0.64,
-// 0.66 and 0.60 M photon paths/s.
-constexpr double kCellWidthInRadii = 8;
+// Cells are this many typical radii wide. Wide cells list each hit point in fewer cells (a
+// cheaper build) and a photon reads more candidates, but they are contiguous. With the old
+// scattered candidates, 2, 4, 8 and 16 radii gave 0.53, 0.64, 0.66 and 0.60 M photon paths/s
+// on smallppm; with contiguous entries, interleaved one-thread runs put 5 behind 8 on both
+// passes, and 12 ahead of 8 on the eye pass (the build) at the same photon speed (16: the
+// eye pass a little faster again, photons ~4 % slower).
+constexpr double kCellWidthInRadii = 12;
 // The build lists entries and claims room in buckets by chunks of this many points.
 constexpr std::size_t kChunkPoints = 4096;
 
@@ -149,7 +151,7 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
     for (int a = 0; a < 3; ++a)
         cells_[a] = static_cast<std::int64_t>(std::floor((upper[a] - origin_[a]) * inv_cell_)) + 1;
 
-    // A bucket per 4 points: cells 8 radii wide hold many points each (a radius spans a pixel
+    // A bucket per 4 points: cells 12 radii wide hold many points each (a radius spans a pixel
     // or more), so occupied cells stay well below the buckets even as radii shrink, while the
     // build's counters, zeroing and serial prefix sum are a quarter of a bucket per point's
     // (eye pass 0.30 -> 0.28 s on smallppm; a bucket per 16 points gained little more).

@@ -7,8 +7,8 @@
 // point): a KD-tree searches the ball of the LARGEST radius around every photon, which, with
 // radii that differ across the image, reads many points no ball reaches.
 //
-// Cells are 8 mean radii wide (hash_grid.cpp says why), so a typical hit point is listed in
-// 1 to 8 cells (about 2 on average in the benchmark), and a ball spans at most 5 per axis.
+// Cells are 12 mean radii wide (hash_grid.cpp says why), so a typical hit point is listed in
+// 1 to 8 cells (fewer than 2 on average in the benchmark), and a ball spans at most 5 per axis.
 // Cells are hashed into a power-of-two table; each bucket is a run of entries holding the
 // point's index and a copy of its position and radius, so a photon tests the candidates of
 // its bucket from one contiguous array (reading each point from the caller's array, in image
