@@ -101,35 +101,51 @@ void Renderer::trace_photon(std::uint64_t index, std::uint32_t pass, std::vector
 }
 
 void Renderer::gather_sorted() {
-    batch_hits_.clear();
+    // The photons stay in the threads' buffers (copying them into one list was a serial 5 % of
+    // the pass); an index runs through the buffers in turn.
+    batch_parts_.clear();
+    batch_part_starts_.clear();
+    std::size_t total = 0;
     for (std::vector<PhotonHit> &hits : thread_hits_) {
-        batch_hits_.insert(batch_hits_.end(), hits.begin(), hits.end());
-        hits.clear();
+        if (hits.empty()) continue;
+        batch_parts_.push_back(&hits);
+        batch_part_starts_.push_back(total);
+        total += hits.size();
     }
+    const auto photon_at = [&](std::size_t index) -> const PhotonHit & {
+        const std::size_t part =
+            std::upper_bound(batch_part_starts_.begin(), batch_part_starts_.end(), index) - batch_part_starts_.begin() - 1;
+        return (*batch_parts_[part])[index - batch_part_starts_[part]];
+    };
     // One 64-bit word per photon, its Morton code above its index: sorting plain integers is
-    // about twice as fast as sorting pairs, and 10 or more bits per axis order the search
-    // well enough.
+    // about twice as fast as sorting pairs. (Radix sorting by the code alone was no faster on
+    // two threads, and 10 bits per axis ordered the searches too coarsely.) The deposits'
+    // order does not change the image: flux is summed in fixed point.
     int index_bits = 1;
-    while ((std::uint64_t(1) << index_bits) < batch_hits_.size()) ++index_bits;
+    while ((std::uint64_t(1) << index_bits) < total) ++index_bits;
     const int axis_bits = std::min(21, (64 - index_bits) / 3);
-    batch_order_.resize(batch_hits_.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, batch_hits_.size(), 4096), [&](const auto &range) {
-        for (std::size_t i = range.begin(); i < range.end(); ++i)
-            batch_order_[i] = morton_key(batch_hits_[i].position, gather_bounds_, axis_bits) << index_bits | i;
-    });
+    batch_order_.resize(total);
+    for (std::size_t part = 0; part < batch_parts_.size(); ++part) {
+        const std::vector<PhotonHit> &hits = *batch_parts_[part];
+        const std::size_t first = batch_part_starts_[part];
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, hits.size(), 4096), [&](const auto &range) {
+            for (std::size_t i = range.begin(); i < range.end(); ++i)
+                batch_order_[first + i] = morton_key(hits[i].position, gather_bounds_, axis_bits) << index_bits | (first + i);
+        });
+    }
     tbb::parallel_sort(batch_order_.begin(), batch_order_.end());
     const std::uint64_t index_mask = (std::uint64_t(1) << index_bits) - 1;
-    // Flux is summed in fixed point, so the order of the deposits does not change the image.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, batch_order_.size(), 1024), [&](const auto &range) {
         if (cancelled()) return;
         for (std::size_t i = range.begin(); i < range.end(); ++i) {
             // The photons lie in path order, so their records are read at random: fetch
             // a few ahead, or each search waits for its photon (half the search's time).
             if (i + kPrefetchAhead < range.end())
-                __builtin_prefetch(&batch_hits_[batch_order_[i + kPrefetchAhead] & index_mask]);
-            deposit(batch_hits_[batch_order_[i] & index_mask]);
+                __builtin_prefetch(&photon_at(batch_order_[i + kPrefetchAhead] & index_mask));
+            deposit(photon_at(batch_order_[i] & index_mask));
         }
     });
+    for (std::vector<PhotonHit> *hits : batch_parts_) hits->clear();
 }
 
 void Renderer::photon_pass(std::uint32_t pass) {

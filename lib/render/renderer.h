@@ -168,7 +168,8 @@ private:
     Box3 gather_bounds_; // hit points' bounds grown by the largest radius: photons outside are not kept
     // Photon batches: per-thread buffers of the photons that landed, then one sorted list.
     tbb::enumerable_thread_specific<std::vector<PhotonHit>> thread_hits_;
-    std::vector<PhotonHit> batch_hits_;
+    std::vector<std::vector<PhotonHit> *> batch_parts_; // the non-empty thread buffers ...
+    std::vector<std::size_t> batch_part_starts_;        // ... and the index of each one's first photon
     std::vector<std::uint64_t> batch_order_; // Morton key << index bits | index
 
     std::atomic<std::uint64_t> passes_{0};
