@@ -25,19 +25,6 @@ void store4(double *p, Lanes4 v) { std::memcpy(p, &v, sizeof v); }
 Lanes4 select4(Mask4 m, Lanes4 yes, Lanes4 no) { return (Lanes4)((m & (Mask4)yes) | (~m & (Mask4)no)); }
 Lanes4 abs4(Lanes4 v) { return select4(v < 0, -v, v); }
 
-// sphere_may_hit() on four lanes.
-Mask4 may_hit4(Lanes4 b, Lanes4 ff, Lanes4 r2, Lanes4 c, double a, double tnear, double t_far) {
-    const Lanes4 abs_b2 = 2 * abs4(b);
-    const Lanes4 far_value = (a * t_far + 2 * b) * t_far + c;
-    const Lanes4 far_margin = 1e-12 * (a * t_far * t_far + abs_b2 * t_far + ff + r2);
-    const Lanes4 near_value = (a * tnear + 2 * b) * tnear + c;
-    const Lanes4 near_margin = 1e-12 * (a * tnear * tnear + abs_b2 * tnear + ff + r2);
-    const Mask4 receding_outside = (b >= 0) & (c > 4 * DBL_EPSILON * ff);
-    const Mask4 roots_beyond = (far_value > far_margin) & (b < -a * t_far);
-    const Mask4 inside_all_along = (far_value < -far_margin) & (near_value < -near_margin);
-    return ~(receding_outside | roots_beyond | inside_all_along) & (r2 >= 0);
-}
-
 } // namespace
 
 struct SphereSet::Lanes {
@@ -72,8 +59,9 @@ void SphereSet::compute_terms(const RayQuery &query, Lanes &lanes) const {
 void SphereSet::may_hit(const RayQuery &query, const Lanes &lanes, bool *out) const {
     const double a = query.dir_length2, tnear = query.tnear, t_far = query.hit.t;
     for (int i = 0; i < kCapacity; i += 4) {
-        const Mask4 m = may_hit4(load4(lanes.b + i), load4(lanes.ff + i), load4(radius2_ + i), load4(lanes.c + i), a,
-                                 tnear, t_far);
+        const Lanes4 b = load4(lanes.b + i), r2 = load4(radius2_ + i);
+        const Mask4 m = ~sphere_ruled_out(b, abs4(b), load4(lanes.ff + i), r2, load4(lanes.c + i), a, tnear, t_far) &
+                        (r2 >= 0);
         for (int k = 0; k < 4; ++k) out[i + k] = m[k] != 0;
     }
 }
@@ -95,7 +83,7 @@ int SphereSet::intersect(RayQuery &query) const {
     // from it (b' > 0). Exits towards the centre lie beyond it, and outside spheres left behind
     // have no hit, so neither is chosen. (From the origin instead, a camera ray clipped past a
     // wall it starts behind would choose that wall and find its far side.) Its hit shortens
-    // the ray, and sphere_may_hit() then rules out most others.
+    // the ray, and sphere_ruled_out() then rules out most others.
     const double a = query.dir_length2, tnear = query.tnear;
     alignas(64) double estimate[kCapacity];
     for (int i = 0; i < kCapacity; i += 4) {

@@ -27,7 +27,7 @@ public:
 private:
     struct Lanes; // the ray's terms for every sphere (sphere_set.cpp)
     void compute_terms(const RayQuery &query, Lanes &lanes) const;
-    // sphere_may_hit() for every lane (false for unused ones).
+    // Whether sphere_ruled_out() leaves each lane's sphere (false for unused lanes).
     void may_hit(const RayQuery &query, const Lanes &lanes, bool *out) const;
     bool test_lane(const Lanes &lanes, int i, RayQuery &query) const;
 

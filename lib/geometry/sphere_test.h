@@ -27,28 +27,27 @@ inline SphereTerms sphere_terms(const Vec3 &center, double radius, const RayQuer
     return t;
 }
 
-// Outside the sphere (beyond the rounding of c): then both roots have the sign of -b.
-inline bool surely_outside(double c, double ff) { return c > 4 * DBL_EPSILON * ff; }
-
-// Whether the quadratic may have a root in [query.tnear, query.hit.t], decided without a sqrt
-// or division; false only when it surely has none:
+// Whether the quadratic surely has no root in [tnear, t_far], decided without a sqrt or
+// division:
 //  - outside and moving away from the centre: both roots are behind the origin (their
 //    product c/a > 0, their sum -2b/a <= 0) and tnear >= 0;
 //  - f(t) = a t^2 + 2 b t + c, convex, is negative at both ends of the interval (inside the
 //    sphere all along: Hachisuka's room lies inside all six wall spheres, and a ray that has
 //    found one wall skips the walls it would leave the sphere through later), or positive at
 //    the far end before its vertex (both roots beyond). The margins cover f's rounding.
-//    With hit.t infinite these comparisons are false (inf or NaN), so nothing is skipped.
-// Written without branches so that SphereSet runs it on all its spheres in SIMD lanes.
-inline bool sphere_may_hit(double b, double ff, double r2, double c, double a, double tnear, double t_far) {
-    const double far_value = (a * t_far + 2 * b) * t_far + c;
-    const double far_margin = 1e-12 * (a * t_far * t_far + 2 * std::fabs(b) * t_far + ff + r2);
-    const double near_value = (a * tnear + 2 * b) * tnear + c;
-    const double near_margin = 1e-12 * (a * tnear * tnear + 2 * std::fabs(b) * tnear + ff + r2);
-    const bool receding_outside = (b >= 0) & surely_outside(c, ff);
-    const bool roots_beyond = (far_value > far_margin) & (b < -a * t_far);
-    const bool inside_all_along = (far_value < -far_margin) & (near_value < -near_margin);
-    return !(receding_outside | roots_beyond | inside_all_along);
+//    With t_far infinite these comparisons are false (inf or NaN), so nothing is ruled out.
+// T is double (the result a truth value) or a SIMD lane type (the result a lane mask): written
+// without branches so that SphereSet runs it on all its spheres at once. abs_b = |b|.
+template <class T>
+auto sphere_ruled_out(T b, T abs_b, T ff, T r2, T c, double a, double tnear, double t_far) {
+    const T far_value = (a * t_far + 2 * b) * t_far + c;
+    const T far_margin = 1e-12 * (a * t_far * t_far + 2 * abs_b * t_far + ff + r2);
+    const T near_value = (a * tnear + 2 * b) * tnear + c;
+    const T near_margin = 1e-12 * (a * tnear * tnear + 2 * abs_b * tnear + ff + r2);
+    const auto receding_outside = (b >= 0) & (c > 4 * DBL_EPSILON * ff);
+    const auto roots_beyond = (far_value > far_margin) & (b < -a * t_far);
+    const auto inside_all_along = (far_value < -far_margin) & (near_value < -near_margin);
+    return receding_outside | roots_beyond | inside_all_along;
 }
 
 // Roots of |org + t dir - c|^2 = r^2 in the cancellation-free form of "Precision Improvements
@@ -57,7 +56,7 @@ inline bool sphere_may_hit(double b, double ff, double r2, double c, double a, d
 inline bool test_sphere_terms(const SphereTerms &terms, RayQuery &query) {
     const double b = terms.b, r2 = terms.r2, c = terms.c;
     const double a = query.dir_length2, inv_a = query.inv_dir_length2;
-    if (!sphere_may_hit(b, terms.ff, r2, c, a, query.tnear, query.hit.t)) return false;
+    if (sphere_ruled_out(b, std::fabs(b), terms.ff, r2, c, a, query.tnear, query.hit.t)) return false;
     const Vec3 l = terms.f - query.dir * (b * inv_a);
     const double disc = a * (r2 - dot(l, l));
     if (!(disc >= 0)) return false;

@@ -147,7 +147,6 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
                                    extent * 0x1p-30, 0x1p-500});
     inv_cell_ = 1.0 / width;
     origin_ = lower;
-
     for (int a = 0; a < 3; ++a)
         cells_[a] = static_cast<std::int64_t>(std::floor((upper[a] - origin_[a]) * inv_cell_)) + 1;
 

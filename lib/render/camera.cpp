@@ -49,8 +49,10 @@ Camera::Camera(const CameraSettings &s) {
     width_ = s.width;
     height_ = s.height;
     aspect_ = double(s.width) / double(s.height);
-    x_scale_ = 2.0 * tan_half_fov_ / width_;
-    y_scale_ = 2.0 * tan_half_fov_ / aspect_ / height_;
+    x_left_ = tan_half_fov_;
+    y_top_ = tan_half_fov_ / aspect_;
+    x_scale_ = 2.0 * x_left_ / width_;
+    y_scale_ = 2.0 * y_top_ / height_;
     aperture_radius_ = s.aperture_radius;
     focus_distance_ = s.focus_distance;
     if (!(s.near_clip >= 0 && std::isfinite(s.near_clip)))
@@ -60,8 +62,8 @@ Camera::Camera(const CameraSettings &s) {
 
 CameraRay Camera::generate_ray(double x, double y, double lens_u, double lens_v) const {
     // Local direction to the film position on the plane z = 1 (Mitsuba's sample_to_camera).
-    const double px = tan_half_fov_ - x * x_scale_;
-    const double py = tan_half_fov_ / aspect_ - y * y_scale_;
+    const double px = x_left_ - x * x_scale_;
+    const double py = y_top_ - y * y_scale_;
     if (aperture_radius_ <= 0) {
         // d has unit length along the view axis, so the near plane lies at near_clip * |d|.
         const Vec3 d = left_ * px + up_ * py + forward_;

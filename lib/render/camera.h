@@ -81,9 +81,9 @@ private:
     Vec3 origin_, forward_, left_, up_;
     double tan_half_fov_ = 0;
     double aspect_ = 1;
-    // 2 tan(fov/2) / width and the same / aspect over height: film to local direction with
-    // multiplications only (the eye pass makes one camera ray per pixel).
-    double x_scale_ = 0, y_scale_ = 0;
+    // The film's top-left corner in local x and y (tan(fov/2) and that / aspect) and the steps
+    // per pixel: film to local direction with multiplications only (one ray per pixel and pass).
+    double x_left_ = 0, y_top_ = 0, x_scale_ = 0, y_scale_ = 0;
     int width_ = 0, height_ = 0;
     double aperture_radius_ = 0, focus_distance_ = 0, near_clip_ = 0;
 };
