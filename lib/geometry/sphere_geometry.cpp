@@ -45,6 +45,7 @@ Box3 SphereGeometry::prepare(const Affine &transform) {
     data_.axis[0] = normalize(x);
     data_.axis[1] = normalize(transform.vector({0, 1, 0}));
     data_.axis[2] = normalize(transform.vector({0, 0, 1}));
+    data_.inv_radius = 1 / data_.radius;
     data_.rounding = 32 * DBL_EPSILON * (max_abs_component(data_.center) + data_.radius);
     Box3 box;
     box.extend(data_.center - Vec3{1, 1, 1} * data_.radius);
@@ -59,7 +60,7 @@ RTCGeometry SphereGeometry::create_embree(RTCDevice device, const EmbreeFrame &f
 
 void SphereGeometry::describe_hit(const RayQuery &query, double tolerance, ppm_hit &hit) const {
     const Vec3 along = query.org + query.dir * query.hit.t - data_.center;
-    const Vec3 n = normalize(along);
+    const Vec3 n = normalize(along * data_.inv_radius); // nearly unit: no square root (vec3.h)
     const Vec3 p = data_.center + n * data_.radius; // back onto the sphere
     p.store(hit.p);
     n.store(hit.ng);

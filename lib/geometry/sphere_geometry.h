@@ -19,7 +19,7 @@ public:
 
     struct Data {
         Vec3 center;
-        double radius;
+        double radius, inv_radius;
         Vec3 axis[3]; // the object's x, y, z axes in world space, for (u, v)
         double rounding = 0; // bound on the rounding of a hit point: 32 ulps of its magnitude
         EmbreeFrame frame;

@@ -33,7 +33,15 @@ inline Vec3 cross(const Vec3 &a, const Vec3 &b) {
 }
 inline double length2(const Vec3 &v) { return dot(v, v); }
 inline double length(const Vec3 &v) { return std::sqrt(dot(v, v)); }
-inline Vec3 normalize(const Vec3 &v) { return v / length(v); }
+// v / |v|. A vector of nearly unit length (a direction spawned from a unit one, a sphere's
+// offset scaled by 1 / r) takes one Newton step of 1 / sqrt from 1 instead of a square root
+// and three divisions on the critical path: for |v|^2 = 1 + d with |d| < 1e-8 its error,
+// 3 d^2 / 8, is below half an ulp.
+inline Vec3 normalize(const Vec3 &v) {
+    const double l2 = dot(v, v), d = l2 - 1;
+    if (std::fabs(d) < 1e-8) return v * (1 - 0.5 * d);
+    return v / std::sqrt(l2);
+}
 // std::min/max rather than fmin/fmax: these inline to single instructions, and coordinates
 // are checked to be finite where they enter the library.
 inline Vec3 vmin(const Vec3 &a, const Vec3 &b) {

@@ -32,11 +32,6 @@ constexpr double kCellWidthInRadii = 12;
 // The build lists entries and claims room in buckets by chunks of this many points.
 constexpr std::size_t kChunkPoints = 4096;
 
-struct Bounds {
-    Box3 box;
-    double max_r2 = 0;
-};
-
 } // namespace
 
 // Blocks of 4 x 4 x 4 cells are hashed; the 64 cells of a block take 64 consecutive buckets.
@@ -89,6 +84,10 @@ void HitPointGrid::for_each_bucket(const HitPoint &p, F &&f) const {
 }
 
 void HitPointGrid::build(const HitPoint *points, std::size_t count) {
+    build(points, count, measure_hit_points(points, count));
+}
+
+void HitPointGrid::build(const HitPoint *points, std::size_t count, const HitPointBounds &bounds) {
     // Empty until built: a build that throws leaves a grid that finds nothing.
     size_ = 0;
     bucket_start_.clear();
@@ -98,22 +97,6 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count) {
         fail(PPM_ERROR_OUT_OF_MEMORY, "the hit point grid takes at most 2^32 - 1 points, not " + std::to_string(count));
     size_ = count;
 
-    using Range = tbb::blocked_range<std::size_t>;
-    const Bounds bounds = tbb::parallel_reduce(
-        Range(0, count, 16384), Bounds{},
-        [&](const Range &range, Bounds b) {
-            for (std::size_t i = range.begin(); i < range.end(); ++i) {
-                if (!points[i].present()) continue;
-                b.box.extend(points[i].position);
-                b.max_r2 = std::max(b.max_r2, points[i].r2);
-            }
-            return b;
-        },
-        [](Bounds a, const Bounds &b) {
-            a.box.extend(b.box);
-            a.max_r2 = std::max(a.max_r2, b.max_r2);
-            return a;
-        });
     max_r2_ = bounds.max_r2;
     if (bounds.box.empty()) return; // every point absent
 

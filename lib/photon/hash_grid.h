@@ -33,6 +33,8 @@ public:
     // calling task arena's threads. Positions and radii are copied, so the array may change or
     // go away afterwards; visitors receive indices into it. Not thread-safe.
     void build(const HitPoint *points, std::size_t count);
+    // The same with the points' bounds already measured (measure_hit_points()).
+    void build(const HitPoint *points, std::size_t count, const HitPointBounds &bounds);
 
     std::size_t size() const { return size_; } // points given to build(), present or not
     double max_r2() const { return max_r2_; }

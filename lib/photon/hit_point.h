@@ -4,6 +4,8 @@
 
 #include "math/vec3.h"
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <type_traits>
 
@@ -26,6 +28,27 @@ inline double distance2(const Vec3 &a, const Vec3 &b) {
     return dx * dx + dy * dy + dz * dz;
 }
 inline bool within_radius(double dist2, double r2) { return dist2 <= r2; }
+
+// The box around the present points of an array, their largest r2 and their number.
+struct HitPointBounds {
+    Box3 box;
+    double max_r2 = 0;
+    std::size_t present = 0;
+
+    void add(const HitPoint &p) {
+        if (!p.present()) return;
+        box.extend(p.position);
+        max_r2 = std::max(max_r2, p.r2);
+        ++present;
+    }
+    void add(const HitPointBounds &b) {
+        box.extend(b.box);
+        max_r2 = std::max(max_r2, b.max_r2);
+        present += b.present;
+    }
+};
+// In parallel on the calling task arena's threads.
+HitPointBounds measure_hit_points(const HitPoint *points, std::size_t count);
 
 // Called once per hit point containing the photon, with the hit point's index in the array
 // the structure was built from and its squared distance to the photon. A function pointer

@@ -7,6 +7,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <cmath>
 
@@ -192,17 +193,28 @@ void Renderer::eye_pass(std::uint32_t pass) {
     const std::uint32_t pixels = static_cast<std::uint32_t>(camera_.width()) * camera_.height();
     if (settings_.mode == RenderSettings::Mode::Sppm) {
         if (slot_pixel_.empty()) init_pixel_slots();
+        // The hit points' bounds are measured as they are stored, while they are in the cache.
+        using Range = tbb::blocked_range<std::uint32_t>;
         scene_->context().run([&] {
-            tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, pixels, 256), [&](const auto &range) {
-                if (cancelled()) return;
-                for (std::uint32_t p = range.begin(); p < range.end(); ++p) {
-                    // The path ends reading the pixel's radius: fetch it early, or each path
-                    // waits for its 64-byte statistics record (~5 % of the eye pass).
-                    if (p + kPrefetchAhead < range.end()) __builtin_prefetch(&stats_[p + kPrefetchAhead]);
-                    trace_sppm_path(p, pass);
-                }
-            });
+            eye_bounds_ = tbb::parallel_reduce(
+                Range(0, pixels, 256), HitPointBounds{},
+                [&](const Range &range, HitPointBounds bounds) {
+                    if (cancelled()) return bounds;
+                    for (std::uint32_t p = range.begin(); p < range.end(); ++p) {
+                        // The path ends reading the pixel's radius: fetch it early, or each
+                        // path waits for its 64-byte statistics record (~5 % of the eye pass).
+                        if (p + kPrefetchAhead < range.end()) __builtin_prefetch(&stats_[p + kPrefetchAhead]);
+                        trace_sppm_path(p, pass);
+                        bounds.add(hit_points_[p]);
+                    }
+                    return bounds;
+                },
+                [](HitPointBounds a, const HitPointBounds &b) {
+                    a.add(b);
+                    return a;
+                });
         });
+        eye_bounds_valid_ = true;
         return;
     }
 

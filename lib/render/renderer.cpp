@@ -84,15 +84,6 @@ void Renderer::store_hit_point(std::uint32_t slot, const VisiblePoint &vp) {
     g.lobe = vp.bsdf.fixed_wo(vp.wo_local, vp.weight);
 }
 
-namespace {
-
-struct HitPointBounds {
-    Box3 box;
-    double max_r2 = 0;
-    std::size_t present = 0;
-};
-
-} // namespace
 
 // The search over this pass's hit points, one per slot (absent ones are skipped). SPPM's camera
 // paths stored theirs; PPM's fixed visible points are stored here, with this pass's radii.
@@ -106,25 +97,9 @@ void Renderer::build_search() {
                 for (std::size_t slot = range.begin(); slot < range.end(); ++slot)
                     store_hit_point(static_cast<std::uint32_t>(slot), visible_[slot]);
             });
-        bounds = tbb::parallel_reduce(
-            Range(0, slots, 16384), HitPointBounds{},
-            [&](const Range &range, HitPointBounds b) {
-                for (std::size_t slot = range.begin(); slot < range.end(); ++slot) {
-                    const HitPoint &h = hit_points_[slot];
-                    if (!h.present()) continue;
-                    b.box.extend(h.position);
-                    b.max_r2 = std::max(b.max_r2, h.r2);
-                    ++b.present;
-                }
-                return b;
-            },
-            [](HitPointBounds a, const HitPointBounds &b) {
-                a.box.extend(b.box);
-                a.max_r2 = std::max(a.max_r2, b.max_r2);
-                a.present += b.present;
-                return a;
-            });
+        bounds = eye_bounds_valid_ ? eye_bounds_ : measure_hit_points(hit_points_.data(), slots);
     });
+    eye_bounds_valid_ = false;
     present_hit_points_ = bounds.present;
     gather_bounds_ = bounds.box;
     const double pad = std::sqrt(bounds.max_r2) * (1 + 1e-9) + 1e-12 * gather_bounds_.diagonal();
@@ -133,7 +108,7 @@ void Renderer::build_search() {
     // In the context's arena: the structures build on the context's workers.
     scene_->context().run([&] {
         if (settings_.search == RenderSettings::Search::Grid)
-            grid_.build(hit_points_.data(), hit_points_.size());
+            grid_.build(hit_points_.data(), hit_points_.size(), bounds);
         else
             tree_.build(hit_points_.data(), hit_points_.size());
     });

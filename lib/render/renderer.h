@@ -162,6 +162,8 @@ private:
     std::vector<HitPoint> hit_points_;    // per slot: position and radius (absent: no point) ...
     std::vector<GatherPoint> gather_;      // ... and what deposit() needs of it
     std::size_t present_hit_points_ = 0;
+    HitPointBounds eye_bounds_;     // of hit_points_, measured by an SPPM eye pass ...
+    bool eye_bounds_valid_ = false; // ... for the build_search() after it
     HitPointGrid grid_;
     HitPointTree tree_;
     std::unique_ptr<FluxAccumulator> flux_;
