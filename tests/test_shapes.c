@@ -875,15 +875,16 @@ static void sphere_roots(const double o[3], const double d[3], const double c[3]
     if (t[0] > t[1]) { const double s = t[0]; t[0] = t[1]; t[1] = s; }
 }
 
-/* Overlapping spheres of many sizes (big ones tested outside the BVH, small ones in it), rays
- * from anywhere (inside spheres too) with directions of any length and random [tnear, tfar]:
- * the nearest root within the interval, as brute force finds it. Exercises the sphere test's
- * shortcuts (receding rays, roots beyond the nearest hit so far) in every order. */
-static void test_random_spheres_and_ray_intervals(void **state) {
-    fixture *f = *state;
-    test_rng rng = {23};
+/* Overlapping spheres of many sizes, rays from anywhere (inside spheres too) with directions of
+ * any length and random [tnear, tfar]: the nearest root within the interval, as brute force
+ * finds it. Exercises the sphere test's shortcuts (receding rays, roots beyond the nearest hit
+ * so far) in every order. With 40 spheres the big ones are tested outside the BVH and the small
+ * ones in it; a scene of 12 spheres keeps them all outside (three groups of SIMD lanes). */
+static void check_random_spheres_and_ray_intervals(fixture *f, int count, uint64_t seed) {
+    test_rng rng = {seed};
     double spheres[40][4];
-    for (int s = 0; s < 40; ++s) {
+    assert_true(count <= 40);
+    for (int s = 0; s < count; ++s) {
         for (int k = 0; k < 3; ++k) spheres[s][k] = 200 * test_rng_uniform(&rng) - 100;
         spheres[s][3] = s < 4 ? 60 + 60 * test_rng_uniform(&rng) : 1 + 20 * test_rng_uniform(&rng);
         add_sphere(f->scene, spheres[s][0], spheres[s][1], spheres[s][2], spheres[s][3]);
@@ -901,7 +902,7 @@ static void test_random_spheres_and_ray_intervals(void **state) {
         const double tfar = test_rng_uniform(&rng) < 0.5 ? INFINITY : tnear + 200 * test_rng_uniform(&rng);
         double best = INFINITY;
         int nearest = -1;
-        for (int s = 0; s < 40; ++s) {
+        for (int s = 0; s < count; ++s) {
             double t[2];
             sphere_roots(o, d, spheres[s], spheres[s][3], t);
             for (int k = 0; k < 2; ++k)
@@ -922,21 +923,29 @@ static void test_random_spheres_and_ray_intervals(void **state) {
     assert_true(hits > 1000);
 }
 
-/* Twelve nested spheres, all with boxes holding most of the scene's: more than the library
- * tests outside its BVH, so the smaller ones stay in it. The nearest is found either way. */
+static void test_random_spheres_and_ray_intervals(void **state) {
+    check_random_spheres_and_ray_intervals(*state, 40, 23);
+}
+
+static void test_few_random_spheres_all_outside_the_bvh(void **state) {
+    check_random_spheres_and_ray_intervals(*state, 12, 29);
+}
+
+/* Twenty nested spheres, all with boxes holding most of the scene's: more than the library
+ * tests outside its BVH (16), so the smaller ones stay in it. The nearest is found either way. */
 static void test_many_nested_big_spheres(void **state) {
     fixture *f = *state;
-    for (int s = 0; s < 12; ++s) add_sphere(f->scene, 0, 0, 0, 1000 * (12 - s)); /* id 11: radius 1000 */
+    for (int s = 0; s < 20; ++s) add_sphere(f->scene, 0, 0, 0, 1000 * (20 - s)); /* id 19: radius 1000 */
     commit(f->scene);
     const ppm_hit inside = trace(f->scene, make_ray(0, 0, 0, 0.6, 0, 0.8));
-    assert_int_equal(inside.geom_id, 11);
+    assert_int_equal(inside.geom_id, 19);
     assert_close(inside.t, 1000, 1e-9);
     const ppm_hit between = trace(f->scene, make_ray(0, 0, 7500, 0, 0, 1)); /* inside radius 8000 */
-    assert_int_equal(between.geom_id, 4);
+    assert_int_equal(between.geom_id, 12);
     assert_close(between.t, 500, 1e-9);
-    const ppm_hit outside = trace(f->scene, make_ray(0, 0, -20000, 0, 0, 1));
+    const ppm_hit outside = trace(f->scene, make_ray(0, 0, -30000, 0, 0, 1));
     assert_int_equal(outside.geom_id, 0);
-    assert_close(outside.t, 8000, 1e-9);
+    assert_close(outside.t, 10000, 1e-9);
 }
 
 #define TEST(name) cmocka_unit_test_setup_teardown(name, scene_fixture_setup, scene_fixture_teardown)
@@ -956,6 +965,7 @@ int main(void) {
         TEST(test_huge_wall_spheres_and_small_ones),
         TEST(test_many_nested_big_spheres),
         TEST(test_random_spheres_and_ray_intervals),
+        TEST(test_few_random_spheres_all_outside_the_bvh),
         TEST(test_quad_hit_inside),
         TEST(test_quad_miss_outside),
         TEST(test_quad_edges_and_corners_hit),

@@ -1,17 +1,19 @@
-// The few huge spheres a scene tests every ray against outside the BVH (Hachisuka's walls of
-// radius 1e5, see Scene), stored coordinate by coordinate so that the cheap tests run on all
-// of them at once in SIMD lanes and only the spheres that may be hit get the exact test with
-// its sqrt and division.
+// The few spheres a scene tests every ray against outside the BVH (huge ones such as
+// Hachisuka's walls of radius 1e5, or every sphere of a scene of a few spheres; see Scene),
+// stored coordinate by coordinate so that the cheap tests run on all of them at once in SIMD
+// lanes and only the spheres that may be hit get the exact test with its sqrt and division.
 #pragma once
 
 #include "geometry/sphere_geometry.h"
 #include "scene/ray_query.h"
 
+#include <cstdint>
+
 namespace ppm {
 
 class SphereSet {
 public:
-    static constexpr int kCapacity = 8;
+    static constexpr int kCapacity = 16;
 
     void clear() { *this = SphereSet(); }
     // Adds a sphere as the next index; throws ppm::Error (invalid operation) beyond kCapacity.
@@ -27,14 +29,16 @@ public:
 private:
     struct Lanes; // the ray's terms for every sphere (sphere_set.cpp)
     void compute_terms(const RayQuery &query, Lanes &lanes) const;
-    // Whether sphere_ruled_out() leaves each lane's sphere (false for unused lanes).
-    void may_hit(const RayQuery &query, const Lanes &lanes, bool *out) const;
+    // Bit i set where sphere_ruled_out() and the line's distance leave sphere i (never for
+    // unused lanes).
+    std::uint32_t may_hit(const RayQuery &query, const Lanes &lanes) const;
     bool test_lane(const Lanes &lanes, int i, RayQuery &query) const;
 
     // Unused lanes hold an empty sphere (radius2 < 0), which no test accepts.
     alignas(64) double cx_[kCapacity] = {}, cy_[kCapacity] = {}, cz_[kCapacity] = {};
-    alignas(64) double radius2_[kCapacity] = {-1, -1, -1, -1, -1, -1, -1, -1};
+    alignas(64) double radius2_[kCapacity] = {-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
     int count_ = 0;
+    int used_lanes_ = 0; // count_ rounded up to whole groups of four lanes
 };
 
 } // namespace ppm

@@ -14,22 +14,29 @@ namespace ppm {
 
 namespace {
 
-// The spheres that stay out of the BVH (see Scene::direct_sphere_ids_): those whose box takes at
-// least 1/64 of the scene box's volume (a box wider than a quarter of the scene's on every
-// axis), at most 8 of them, the largest first. A BVH cannot cull such a box, and in it the box
-// would widen the nodes above everything else.
-std::vector<uint32_t> big_sphere_ids(const std::vector<std::unique_ptr<Geometry>> &geometries,
-                                              const Box3 &scene_box) {
+// The spheres that stay out of the BVH (see Scene::direct_sphere_ids_), the largest first, at
+// most SphereSet::kCapacity (16): those whose box takes at least 1/64 of the scene box's volume
+// (a box wider than a quarter of the scene's on every axis), or every sphere when the scene is
+// nothing but 16 or fewer spheres. A BVH cannot cull a big sphere's box, and in it the box
+// would widen the nodes above everything else; and a handful of spheres is tested in SIMD
+// lanes for less than calls into Embree cost.
+std::vector<uint32_t> direct_sphere_ids(const std::vector<std::unique_ptr<Geometry>> &geometries,
+                                        const Box3 &scene_box) {
     constexpr double min_volume_fraction = 1.0 / 64;
     constexpr size_t max_direct = SphereSet::kCapacity;
     const Vec3 extent = scene_box.upper - scene_box.lower;
     const double scene_volume = extent.x * extent.y * extent.z;
+    const bool only_few_spheres =
+        geometries.size() <= max_direct && std::all_of(geometries.begin(), geometries.end(), [](const auto &g) {
+            return dynamic_cast<const SphereGeometry *>(g.get()) != nullptr;
+        });
     std::vector<std::pair<double, uint32_t>> big;
     for (size_t id = 0; id < geometries.size(); ++id) {
         const auto *sphere = dynamic_cast<const SphereGeometry *>(geometries[id].get());
         if (!sphere) continue;
         const double side = 2 * sphere->data().radius, volume = side * side * side;
-        if (volume >= min_volume_fraction * scene_volume) big.push_back({volume, static_cast<uint32_t>(id)});
+        if (only_few_spheres || volume >= min_volume_fraction * scene_volume)
+            big.push_back({volume, static_cast<uint32_t>(id)});
     }
     std::sort(big.begin(), big.end(), [](const auto &a, const auto &b) { return a.first > b.first; });
     std::vector<uint32_t> ids;
@@ -149,7 +156,8 @@ void Scene::commit() {
     rtcSetSceneFlags(rtc, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(rtc, RTC_BUILD_QUALITY_HIGH);
     try {
-        direct_sphere_ids_ = big_sphere_ids(geometries_, bounds);
+        direct_sphere_ids_ = direct_sphere_ids(geometries_, bounds);
+        bvh_empty_ = direct_sphere_ids_.size() == geometries_.size();
         direct_spheres_.clear();
         for (uint32_t id : direct_sphere_ids_) {
             const SphereGeometry::Data &sphere = static_cast<const SphereGeometry &>(*geometries_[id]).data();
@@ -261,7 +269,7 @@ void Scene::intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv) const {
         query.hit.geom_id = direct_sphere_ids_[nearest];
         rayhit.ray.tfar = std::min(rayhit.ray.tfar, query.embree_tfar(query.hit.t));
     }
-    rtcIntersect1(rtc_scene_, &query.embree, &rayhit);
+    if (!bvh_empty_) rtcIntersect1(rtc_scene_, &query.embree, &rayhit);
     if (!query.found) return write_miss(hit);
 
     // Every field is set below (describe_hit writes p, p_error, ng and ns).
@@ -282,6 +290,7 @@ bool Scene::occluded(const ppm_ray &ray) const {
     RTCRay embree_ray;
     if (!start_query(ray, true, query, embree_ray)) return false;
     if (direct_spheres_.occluded(query)) return true;
+    if (bvh_empty_) return false;
     rtcOccluded1(rtc_scene_, &query.embree, &embree_ray);
     return query.found;
 }

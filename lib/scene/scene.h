@@ -70,9 +70,11 @@ private:
 
     // Spheres whose box holds much of the scene's (Hachisuka's walls of radius 1e5): every ray
     // overlaps them, so they stay out of the BVH, where their boxes would hide everything else
-    // from the culling, and every query tests them directly.
+    // from the culling, and every query tests them directly. A scene of a few spheres keeps
+    // them all here and its BVH empty.
     std::vector<uint32_t> direct_sphere_ids_;
     SphereSet direct_spheres_; // the same spheres, by index in direct_sphere_ids_
+    bool bvh_empty_ = false;   // every geometry is a direct sphere: Embree is not called
 
     RTCScene rtc_scene_ = nullptr;
     bool committed_ = false;
