@@ -68,6 +68,11 @@ HitPointGrid::CellRange HitPointGrid::cells_of(const HitPoint &p) const {
 template <class F>
 void HitPointGrid::for_each_bucket(const HitPoint &p, F &&f) const {
     const CellRange range = cells_of(p);
+    // Most balls lie within one cell (cells are many radii wide).
+    if (range.lo[0] == range.hi[0] && range.lo[1] == range.hi[1] && range.lo[2] == range.hi[2]) {
+        f(bucket(range.lo[0], range.lo[1], range.lo[2]));
+        return;
+    }
     // Distinct cells may share a bucket; a point is listed there once, or a photon would
     // count it twice.
     // One more per axis than the widths allow, should rounding stretch a range by a cell.
