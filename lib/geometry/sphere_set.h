@@ -1,7 +1,7 @@
 // The few spheres a scene tests every ray against outside the BVH (huge ones such as
 // Hachisuka's walls of radius 1e5, or every sphere of a scene of a few spheres; see Scene),
-// stored coordinate by coordinate so that the cheap tests run on all of them at once in SIMD
-// lanes and only the spheres that may be hit get the exact test with its sqrt and division.
+// stored coordinate by coordinate so that the exact test runs on all of them at once in SIMD
+// lanes.
 #pragma once
 
 #include "geometry/sphere_geometry.h"
@@ -27,12 +27,8 @@ public:
     bool occluded(RayQuery &query) const;
 
 private:
-    struct Lanes; // the ray's terms for every sphere (sphere_set.cpp)
-    void compute_terms(const RayQuery &query, Lanes &lanes) const;
-    // Bit i set where sphere_ruled_out() and the line's distance leave sphere i (never for
-    // unused lanes).
-    std::uint32_t may_hit(const RayQuery &query, const Lanes &lanes) const;
-    bool test_lane(const Lanes &lanes, int i, RayQuery &query) const;
+    // t[i]: sphere i's nearest root within [query.tnear, query.hit.t], or infinity.
+    void nearest_roots(const RayQuery &query, double *t) const;
 
     // Unused lanes hold an empty sphere (radius2 < 0), which no test accepts.
     alignas(64) double cx_[kCapacity] = {}, cy_[kCapacity] = {}, cz_[kCapacity] = {};
