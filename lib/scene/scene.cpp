@@ -193,7 +193,6 @@ void Scene::require_committed(const char *operation) const {
 }
 
 bool Scene::start_query(const ppm_ray &ray, bool any_hit, RayQuery &query, RTCRay &embree_ray) const {
-    rtcInitIntersectContext(&query.embree);
     query.org = Vec3::from(ray.org);
     query.dir = Vec3::from(ray.dir);
     query.tnear = ray.tnear;
@@ -239,6 +238,8 @@ bool Scene::start_query(const ppm_ray &ray, bool any_hit, RayQuery &query, RTCRa
     if (!(t0 <= t1)) return false;
 
     query.t_shift = t0;
+    if (bvh_empty_) return true; // Embree is not called: no float ray
+    rtcInitIntersectContext(&query.embree);
     const Vec3 start = query.org + query.dir * t0 - frame_.center;
     const Vec3 unit = query.dir * (query.dir_length * query.inv_dir_length2); // 1/|d| = |d|/|d|^2
     embree_ray.org_x = static_cast<float>(start.x);
@@ -265,11 +266,11 @@ void Scene::intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv) const {
     rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     // The big spheres first: a hit there shortens the ray Embree traverses.
     const int nearest = direct_spheres_.intersect(query);
-    if (nearest >= 0) {
-        query.hit.geom_id = direct_sphere_ids_[nearest];
-        rayhit.ray.tfar = std::min(rayhit.ray.tfar, query.embree_tfar(query.hit.t));
+    if (nearest >= 0) query.hit.geom_id = direct_sphere_ids_[nearest];
+    if (!bvh_empty_) {
+        if (nearest >= 0) rayhit.ray.tfar = std::min(rayhit.ray.tfar, query.embree_tfar(query.hit.t));
+        rtcIntersect1(rtc_scene_, &query.embree, &rayhit);
     }
-    if (!bvh_empty_) rtcIntersect1(rtc_scene_, &query.embree, &rayhit);
     if (!query.found) return write_miss(hit);
 
     // Every field is set below (describe_hit writes p, p_error, ng and ns).

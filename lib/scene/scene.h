@@ -57,7 +57,8 @@ public:
     void mark_modified() { committed_ = false; }
 
 private:
-    // Sets up the query and Embree's float ray; false if the ray misses the scene's box.
+    // Sets up the query and, unless the BVH is empty, Embree's float ray and context; false if
+    // the ray misses the scene's box.
     bool start_query(const ppm_ray &ray, bool any_hit, RayQuery &query, RTCRay &embree_ray) const;
     void require_committed(const char *operation) const;
 
