@@ -1,5 +1,5 @@
-// The exact double-precision ray/sphere test shared by SphereGeometry (Embree's callbacks)
-// and SphereSet (the huge spheres tested outside the BVH).
+// The exact double-precision ray/sphere test of SphereGeometry (Embree's callbacks). SphereSet
+// (the spheres tested outside the BVH) computes the same roots in SIMD lanes.
 #pragma once
 
 #include "scene/ray_query.h"
@@ -36,18 +36,17 @@ inline SphereTerms sphere_terms(const Vec3 &center, double radius, const RayQuer
 //    found one wall skips the walls it would leave the sphere through later), or positive at
 //    the far end before its vertex (both roots beyond). The margins cover f's rounding.
 //    With t_far infinite these comparisons are false (inf or NaN), so nothing is ruled out.
-// T is double (the result a truth value) or a SIMD lane type (the result a lane mask): written
-// without branches so that SphereSet runs it on all its spheres at once. abs_b = |b|.
-template <class T>
-auto sphere_ruled_out(T b, T abs_b, T ff, T r2, T c, double a, double tnear, double t_far) {
-    const T far_value = (a * t_far + 2 * b) * t_far + c;
-    const T far_margin = 1e-12 * (a * t_far * t_far + 2 * abs_b * t_far + ff + r2);
-    const T near_value = (a * tnear + 2 * b) * tnear + c;
-    const T near_margin = 1e-12 * (a * tnear * tnear + 2 * abs_b * tnear + ff + r2);
-    const auto receding_outside = (b >= 0) & (c > 4 * DBL_EPSILON * ff);
-    const auto roots_beyond = (far_value > far_margin) & (b < -a * t_far);
-    const auto inside_all_along = (far_value < -far_margin) & (near_value < -near_margin);
-    return receding_outside | roots_beyond | inside_all_along;
+// abs_b = |b|.
+inline bool sphere_ruled_out(double b, double abs_b, double ff, double r2, double c, double a, double tnear,
+                             double t_far) {
+    const double far_value = (a * t_far + 2 * b) * t_far + c;
+    const double far_margin = 1e-12 * (a * t_far * t_far + 2 * abs_b * t_far + ff + r2);
+    const double near_value = (a * tnear + 2 * b) * tnear + c;
+    const double near_margin = 1e-12 * (a * tnear * tnear + 2 * abs_b * tnear + ff + r2);
+    const bool receding_outside = b >= 0 && c > 4 * DBL_EPSILON * ff;
+    const bool roots_beyond = far_value > far_margin && b < -a * t_far;
+    const bool inside_all_along = far_value < -far_margin && near_value < -near_margin;
+    return receding_outside || roots_beyond || inside_all_along;
 }
 
 // Roots of |org + t dir - c|^2 = r^2 in the cancellation-free form of "Precision Improvements
