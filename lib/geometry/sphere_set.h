@@ -7,8 +7,6 @@
 #include "geometry/sphere_geometry.h"
 #include "scene/ray_query.h"
 
-#include <cstdint>
-
 namespace ppm {
 
 class SphereSet {
