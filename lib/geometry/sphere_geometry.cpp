@@ -1,14 +1,75 @@
 #include "geometry/sphere_geometry.h"
 
 #include "core/error.h"
-#include "geometry/sphere_test.h"
 #include "scene/user_geometry.h"
 
 #include <cfloat>
+#include <cmath>
+#include <utility>
 
 namespace ppm {
 
 namespace {
+
+// The ray's terms for one sphere: the quadratic |org + t dir - centre|^2 - r^2 =
+// a t^2 + 2 b t + c with a = |dir|^2, and |f|^2 for error bounds.
+struct SphereTerms {
+    Vec3 f; // org - centre
+    double b, ff, r2, c;
+};
+
+inline SphereTerms sphere_terms(const Vec3 &center, double radius, const RayQuery &query) {
+    SphereTerms t;
+    t.f = query.org - center;
+    t.b = dot(t.f, query.dir);
+    t.ff = dot(t.f, t.f);
+    t.r2 = radius * radius;
+    t.c = t.ff - t.r2;
+    return t;
+}
+
+// Whether the quadratic surely has no root in [tnear, t_far], decided without a sqrt or
+// division:
+//  - outside and moving away from the centre: both roots are behind the origin (their
+//    product c/a > 0, their sum -2b/a <= 0) and tnear >= 0;
+//  - f(t) = a t^2 + 2 b t + c, convex, is negative at both ends of the interval (inside the
+//    sphere all along: Hachisuka's room lies inside all six wall spheres, and a ray that has
+//    found one wall skips the walls it would leave the sphere through later), or positive at
+//    the far end before its vertex (both roots beyond). The margins cover f's rounding.
+//    With t_far infinite these comparisons are false (inf or NaN), so nothing is ruled out.
+// abs_b = |b|.
+inline bool sphere_ruled_out(double b, double abs_b, double ff, double r2, double c, double a, double tnear,
+                             double t_far) {
+    const double far_value = (a * t_far + 2 * b) * t_far + c;
+    const double far_margin = 1e-12 * (a * t_far * t_far + 2 * abs_b * t_far + ff + r2);
+    const double near_value = (a * tnear + 2 * b) * tnear + c;
+    const double near_margin = 1e-12 * (a * tnear * tnear + 2 * abs_b * tnear + ff + r2);
+    const bool receding_outside = b >= 0 && c > 4 * DBL_EPSILON * ff;
+    const bool roots_beyond = far_value > far_margin && b < -a * t_far;
+    const bool inside_all_along = far_value < -far_margin && near_value < -near_margin;
+    return receding_outside || roots_beyond || inside_all_along;
+}
+
+// Roots of |org + t dir - c|^2 = r^2 in the cancellation-free form of "Precision Improvements
+// for Ray/Sphere Intersection" (Haines et al., Ray Tracing Gems, ch. 7). Records a hit with t
+// in [query.tnear, query.hit.t] (the nearer root if both are) and returns true.
+inline bool test_sphere_terms(const SphereTerms &terms, RayQuery &query) {
+    const double b = terms.b, r2 = terms.r2, c = terms.c;
+    const double a = query.dir_length2, inv_a = query.inv_dir_length2;
+    if (sphere_ruled_out(b, std::fabs(b), terms.ff, r2, c, a, query.tnear, query.hit.t)) return false;
+    const Vec3 l = terms.f - query.dir * (b * inv_a);
+    const double disc = a * (r2 - dot(l, l));
+    if (!(disc >= 0)) return false;
+    const double q = -(b + std::copysign(std::sqrt(disc), b));
+    double t0 = q * inv_a, t1 = q != 0 ? c / q : t0;
+    if (t0 > t1) std::swap(t0, t1);
+    for (double t : {t0, t1})
+        if (t >= query.tnear && t <= query.hit.t) {
+            query.record(t, 0, 0, 0);
+            return true;
+        }
+    return false;
+}
 
 bool test_sphere(const SphereGeometry::Data &s, unsigned, RayQuery &query) {
     return test_sphere_terms(sphere_terms(s.center, s.radius, query), query);

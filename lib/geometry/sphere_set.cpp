@@ -65,7 +65,7 @@ void SphereSet::add(const Vec3 &center, double radius) {
 
 // The roots of |org + t dir - c|^2 = r^2 in the cancellation-free form of "Precision
 // Improvements for Ray/Sphere Intersection" (Haines et al., Ray Tracing Gems, ch. 7), exactly
-// as test_sphere_terms() computes them for one sphere, here for four at once: a group pays for
+// as SphereGeometry's test computes them for one sphere, here for four at once: a group pays for
 // a square root and a division unless the line misses all its spheres, but no lane waits for
 // another's test. (An estimate of the nearest sphere, a SIMD exclusion test and scalar exact
 // tests of the survivors took 16 % more instructions per camera path on smallppm, and 15 %

@@ -33,13 +33,17 @@ inline Vec3 cross(const Vec3 &a, const Vec3 &b) {
 }
 inline double length2(const Vec3 &v) { return dot(v, v); }
 inline double length(const Vec3 &v) { return std::sqrt(dot(v, v)); }
-// v / |v|. A vector of nearly unit length (a direction spawned from a unit one, a sphere's
-// offset scaled by 1 / r) takes one Newton step of 1 / sqrt from 1 instead of a square root
-// and three divisions on the critical path: for |v|^2 = 1 + d with |d| < 1e-8 its error,
-// 3 d^2 / 8, is below half an ulp.
+// Whether |v|^2 = l2 = 1 + d is so near 1 (|d| < 1e-8) that first-order terms are exact to
+// rounding: 1 / l2 = 1 - d, |v| = 1 + d / 2, 1 / |v| = 1 - d / 2, with errors of d^2, d^2 / 8
+// and 3 d^2 / 8, all below half an ulp. The renderer's directions are unit vectors, and these
+// spare a square root and divisions on every ray's critical path.
+inline bool nearly_unit(double l2) { return std::fabs(l2 - 1) < 1e-8; }
+
+// v / |v|; a nearly unit v (a direction spawned from a unit one, a sphere's offset scaled by
+// 1 / r) without a square root or division.
 inline Vec3 normalize(const Vec3 &v) {
-    const double l2 = dot(v, v), d = l2 - 1;
-    if (std::fabs(d) < 1e-8) return v * (1 - 0.5 * d);
+    const double l2 = dot(v, v);
+    if (nearly_unit(l2)) return v * (1 - 0.5 * (l2 - 1));
     return v / std::sqrt(l2);
 }
 // std::min/max rather than fmin/fmax: these inline to single instructions, and coordinates

@@ -189,14 +189,15 @@ void Renderer::init_pixel_slots() {
     flux_ = std::make_unique<FluxAccumulator>(pixels, flux_scale());
 }
 
-void Renderer::eye_pass(std::uint32_t pass) {
+std::optional<HitPointBounds> Renderer::eye_pass(std::uint32_t pass) {
     const std::uint32_t pixels = static_cast<std::uint32_t>(camera_.width()) * camera_.height();
     if (settings_.mode == RenderSettings::Mode::Sppm) {
         if (slot_pixel_.empty()) init_pixel_slots();
         // The hit points' bounds are measured as they are stored, while they are in the cache.
         using Range = tbb::blocked_range<std::uint32_t>;
+        HitPointBounds eye_bounds;
         scene_->context().run([&] {
-            eye_bounds_ = tbb::parallel_reduce(
+            eye_bounds = tbb::parallel_reduce(
                 Range(0, pixels, 256), HitPointBounds{},
                 [&](const Range &range, HitPointBounds bounds) {
                     if (cancelled()) return bounds;
@@ -214,8 +215,7 @@ void Renderer::eye_pass(std::uint32_t pass) {
                     return a;
                 });
         });
-        eye_bounds_valid_ = true;
-        return;
+        return eye_bounds;
     }
 
     // PPM: the first pass fixes the slots. Rows are traced in parallel into their own lists,
@@ -259,6 +259,7 @@ void Renderer::eye_pass(std::uint32_t pass) {
     gather_.resize(slot_pixel_.size());
     pass_direct_.assign(slot_pixel_.size(), Rgb());
     flux_ = std::make_unique<FluxAccumulator>(slot_pixel_.size(), flux_scale());
+    return std::nullopt; // the fixed points are stored and measured by build_search()
 }
 
 void Renderer::direct_pass(std::uint32_t pass) {

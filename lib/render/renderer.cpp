@@ -47,13 +47,14 @@ void Renderer::render_pass() {
     const bool ppm_mode = settings_.mode == RenderSettings::Mode::Ppm;
 
     const auto eye_start = std::chrono::steady_clock::now();
-    if (!ppm_mode || slot_pixel_.empty()) eye_pass(pass);
+    std::optional<HitPointBounds> eye_bounds;
+    if (!ppm_mode || slot_pixel_.empty()) eye_bounds = eye_pass(pass);
     if (ppm_mode) direct_pass(pass);
     if (cancelled()) {
         if (ppm_mode && pass == 0) slot_pixel_.clear(); // the fixed points are redone next time
         check_cancel();
     }
-    build_search();
+    build_search(eye_bounds);
     const double eye_seconds = seconds_since(eye_start);
 
     const auto photon_start = std::chrono::steady_clock::now();
@@ -84,10 +85,9 @@ void Renderer::store_hit_point(std::uint32_t slot, const VisiblePoint &vp) {
     g.lobe = vp.bsdf.fixed_wo(vp.wo_local, vp.weight);
 }
 
-
 // The search over this pass's hit points, one per slot (absent ones are skipped). SPPM's camera
 // paths stored theirs; PPM's fixed visible points are stored here, with this pass's radii.
-void Renderer::build_search() {
+void Renderer::build_search(const std::optional<HitPointBounds> &eye_bounds) {
     using Range = tbb::blocked_range<std::size_t>;
     const std::size_t slots = hit_points_.size();
     HitPointBounds bounds;
@@ -97,9 +97,8 @@ void Renderer::build_search() {
                 for (std::size_t slot = range.begin(); slot < range.end(); ++slot)
                     store_hit_point(static_cast<std::uint32_t>(slot), visible_[slot]);
             });
-        bounds = eye_bounds_valid_ ? eye_bounds_ : measure_hit_points(hit_points_.data(), slots);
+        bounds = eye_bounds ? *eye_bounds : measure_hit_points(hit_points_.data(), slots);
     });
-    eye_bounds_valid_ = false;
     present_hit_points_ = bounds.present;
     gather_bounds_ = bounds.box;
     const double pad = std::sqrt(bounds.max_r2) * (1 + 1e-9) + 1e-12 * gather_bounds_.diagonal();

@@ -39,6 +39,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 namespace ppm {
@@ -117,14 +118,16 @@ public:
     void load_checkpoint(const std::string &path);
 
 private:
-    void eye_pass(std::uint32_t pass);
+    // SPPM returns the bounds of the hit points it stored (measured while they are in the
+    // cache); PPM's fixed points are stored and measured by build_search().
+    std::optional<HitPointBounds> eye_pass(std::uint32_t pass);
     void init_pixel_slots(); // SPPM: one slot per pixel, statistics zero
     double flux_scale() const; // for the FluxAccumulator
     void photon_pass(std::uint32_t pass);
     void direct_pass(std::uint32_t pass); // PPM: direct light again at the fixed points
     // The slot's hit point and gather data for this pass (absent unless vp.valid).
     void store_hit_point(std::uint32_t slot, const VisiblePoint &vp);
-    void build_search();
+    void build_search(const std::optional<HitPointBounds> &eye_bounds);
     void commit_pass();
     bool cancelled() const { return cancel_requested_.load(std::memory_order_relaxed); }
 
@@ -162,8 +165,6 @@ private:
     std::vector<HitPoint> hit_points_;    // per slot: position and radius (absent: no point) ...
     std::vector<GatherPoint> gather_;      // ... and what deposit() needs of it
     std::size_t present_hit_points_ = 0;
-    HitPointBounds eye_bounds_;     // of hit_points_, measured by an SPPM eye pass ...
-    bool eye_bounds_valid_ = false; // ... for the build_search() after it
     HitPointGrid grid_;
     HitPointTree tree_;
     std::unique_ptr<FluxAccumulator> flux_;

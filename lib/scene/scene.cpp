@@ -200,13 +200,9 @@ bool Scene::start_query(const ppm_ray &ray, bool any_hit, RayQuery &query, RTCRa
     query.tolerance = frame_.tolerance;
     query.any_hit = any_hit;
     query.dir_length2 = dot(query.dir, query.dir);
-    // Renderers spawn unit directions: for |dir|^2 = 1 + d with |d| < 1e-8 the first-order
-    // terms are exact to rounding (errors d^2 and d^2 / 8), and spare a division and a square
-    // root on every query's critical path.
-    const double unit_excess = query.dir_length2 - 1;
-    if (std::fabs(unit_excess) < 1e-8) {
-        query.inv_dir_length2 = 1 - unit_excess;
-        query.dir_length = 1 + 0.5 * unit_excess;
+    if (nearly_unit(query.dir_length2)) { // first-order terms, exact to rounding (vec3.h)
+        query.inv_dir_length2 = 1 - (query.dir_length2 - 1);
+        query.dir_length = 1 + 0.5 * (query.dir_length2 - 1);
     } else {
         query.inv_dir_length2 = 1.0 / query.dir_length2;
         query.dir_length = std::sqrt(query.dir_length2);
