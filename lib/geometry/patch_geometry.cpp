@@ -1,5 +1,6 @@
 #include "geometry/patch_geometry.h"
 
+#include "geometry/chord_slope.h"
 #include "geometry/patch_intersector.h"
 #include "scene/user_geometry.h"
 
@@ -13,7 +14,7 @@ namespace {
 
 // Sub-patches per patch edge come from the scene setting "patch_presplit" (EmbreeFrame).
 // Smaller sub-patches give Embree tighter boxes and leave the Krawczyk test less to prove,
-// more cost Embree callbacks and memory (48 bytes of culling data each plus Embree's ~90
+// more cost Embree callbacks and memory (52 bytes of culling data each plus Embree's ~90
 // bytes). On the teapot 12 (the default) was the fastest on camera rays and about as fast as
 // 4 on random ones; 3 keeps the whole structure 1000x smaller than a 1M-triangle mesh
 // (ppm-bench intersect, exact-presplit-N).
@@ -71,13 +72,32 @@ bool segment_misses(const PatchGeometry::SubPatch &sub, const RayQuery &query) {
            (d0 > sub.slab_hi + pad && d1 > sub.slab_hi + pad);
 }
 
+Vec3 unit_normal(const PatchGeometry::SubPatch &sub) {
+    return normalize(Vec3{sub.normal[0], sub.normal[1], sub.normal[2]});
+}
+
+// Whether the ray leaves a point of this sub-patch (the caller said where it starts) and
+// cannot meet it again: chord_slope.h. The hit point the ray was spawned from is the
+// patch evaluated at the hit's (u, v), to rounding of 32 ulps of the patch's magnitude (as
+// PatchGeometry::describe_hit states); twice that is allowed for.
+bool leaves_own_sub_patch(const PatchGeometry::Data &data, const PatchGeometry::SubPatch &sub,
+                          unsigned patch_index, const Domain &d, const RayQuery &query) {
+    const RayOrigin &from = query.origin;
+    if (from.prim_id != patch_index || !(query.tnear >= 0)) return false;
+    if (!(from.u >= d.u0 && from.u <= d.u1 && from.v >= d.v0 && from.v <= d.v1)) return false;
+    const double offset_error = 64 * DBL_EPSILON * (*data.magnitudes)[patch_index];
+    return leaves_for_good(unit_normal(sub), sub.chord_slope, query.org - from.p, offset_error, query.dir);
+}
+
 bool test_sub_patch(const PatchGeometry::Data &data, unsigned prim, RayQuery &query) {
     const PatchGeometry::SubPatch &sub = data.sub_patches[prim];
-    if (segment_misses(sub, query)) return false;
     const unsigned per_patch = unsigned(data.per_edge * data.per_edge);
     const unsigned patch_index = prim / per_patch, within = prim % per_patch;
     const int row = int(within) / data.per_edge, column = int(within) % data.per_edge;
     const Domain d = domain_of(row, column, data.per_edge);
+    if (query.origin.geom_id == query.tested_geom_id && leaves_own_sub_patch(data, sub, patch_index, d, query))
+        return false;
+    if (segment_misses(sub, query)) return false;
     ControlGrid grid;
     sub_patch_soa((*data.patches)[patch_index], data.intervals[column], data.intervals[row], grid.x,
                   grid.y, grid.z);
@@ -130,6 +150,7 @@ PatchGeometry::SubPatch make_sub_patch(const BezierPatch &patch, const IntervalM
     sub.slab_lo = round_down(lo);
     sub.slab_hi = round_up(hi);
     sub.derivative_bound = round_up(grid.bound_derivatives());
+    sub.chord_slope = round_up(chord_slope_bound(grid, unit_normal(sub)));
     return sub;
 }
 
@@ -180,6 +201,7 @@ void PatchGeometry::split_patches(int per_edge) {
             for (int column = 0; column < per_edge; ++column)
                 data_.sub_patches.push_back(make_sub_patch(patch, data_.intervals[column], data_.intervals[row]));
     data_.patches = &world_patches();
+    data_.magnitudes = &magnitude_;
     data_.per_edge = per_edge;
 }
 

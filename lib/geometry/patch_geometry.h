@@ -32,20 +32,23 @@ public:
     // What a sub-patch keeps between rays: culling data in single precision, rounded outward.
     // Its control points are cut from the world patch when a ray gets past this culling
     // (about a microsecond's work less than the search itself); keeping them would take 400
-    // bytes per sub-patch, 9x the rest (ppm-bench intersect, memory).
+    // bytes per sub-patch, 8x the rest (ppm-bench intersect, memory).
     struct SubPatch {
         float lower[3], upper[3]; // bounds of its control points
         float normal[3];          // unit normal of a slab holding the control points ...
         float slab_lo, slab_hi;   // ... between these offsets along it (a "fat plane")
         float derivative_bound;   // ControlGrid::derivative_bound, rounded up
+        float chord_slope;        // chord_slope_bound for the normal, rounded up (chord_slope.h)
     };
     struct Data {
         const std::vector<BezierPatch> *patches = nullptr; // world space
+        const std::vector<double> *magnitudes = nullptr;    // per patch: largest |coordinate|
         std::vector<SubPatch> sub_patches; // per_edge x per_edge per patch, row by row
         int per_edge = 1;
         std::vector<IntervalMatrix> intervals; // cutting [0, 1] into per_edge pieces
         EmbreeFrame frame;
     };
+    const Data &data() const { return data_; } // valid after the scene's commit
 
 private:
     // Fills data_.sub_patches with per_edge x per_edge sub-patches of each world patch.

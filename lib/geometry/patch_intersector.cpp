@@ -1,5 +1,6 @@
 #include "geometry/patch_intersector.h"
 
+#include "geometry/derivative_hull.h"
 #include "math/min_max.h"
 
 #ifdef __SSE2__
@@ -241,37 +242,6 @@ struct Krawczyk {
                (1 - contraction);
     }
 };
-
-struct Interval {
-    double lo, hi;
-};
-
-// Hull of the derivative control points of one coordinate: encloses d/da (or d/db) of that
-// coordinate over the whole region.
-Interval derivative_hull_a(const double *c) {
-    Interval r{INFINITY, -INFINITY};
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 3; ++j) {
-            const double d = 3.0 * (c[i * 4 + j + 1] - c[i * 4 + j]);
-            r.lo = std::min(r.lo, d); r.hi = std::max(r.hi, d);
-        }
-    return r;
-}
-Interval derivative_hull_b(const double *c) {
-    Interval r{INFINITY, -INFINITY};
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 4; ++j) {
-            const double d = 3.0 * (c[(i + 1) * 4 + j] - c[i * 4 + j]);
-            r.lo = std::min(r.lo, d); r.hi = std::max(r.hi, d);
-        }
-    return r;
-}
-
-// Interval of y * [i.lo, i.hi] for a point value y.
-Interval scale(double y, Interval i) {
-    const double p = y * i.lo, q = y * i.hi;
-    return {std::min(p, q), std::max(p, q)};
-}
 
 // Krawczyk operator on the region's [0, 1]^2 with midpoint c = (1/2, 1/2) and the
 // preconditioner Y = J(c)^-1:  K = c - Y F(c) + (I - Y J([0,1]^2)) ([0,1]^2 - c).

@@ -92,8 +92,9 @@ void Renderer::trace_sppm_path(std::uint32_t pixel, std::uint32_t pass) {
     Rgb weight(1.0), direct;
     double length = 0;
     SurfacePoint sp;
+    const ppm_hit *leaving = nullptr; // the lens
     for (int depth = 0; depth < settings_.max_depth; ++depth) {
-        if (!render_scene_.intersect(ray, sp)) break;
+        if (!render_scene_.intersect(ray, sp, leaving)) break;
         length += sp.hit.t;
         direct += weight * sp.emitted;
         const double u_lobe = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
@@ -110,6 +111,7 @@ void Renderer::trace_sppm_path(std::uint32_t pixel, std::uint32_t pass) {
         weight *= s.weight;
         if (weight.is_black()) break;
         ray = spawn_ray(sp.hit, sp.frame.to_world(s.wi));
+        leaving = &sp.hit;
     }
     if (vp.valid) direct += direct_light(vp, rng);
     pass_direct_[pixel] = direct;
@@ -125,12 +127,13 @@ struct SplitPaths {
 };
 
 template <class Emit>
-void Renderer::trace_split_path(const ppm_ray &start, Rgb weight, int depth, double length, int &budget,
-                                std::uint32_t pixel, Emit &&emit) {
+void Renderer::trace_split_path(const ppm_ray &start, const ppm_hit *leaving, Rgb weight, int depth,
+                                double length, int &budget, std::uint32_t pixel, Emit &&emit) {
     ppm_ray ray = start;
     SurfacePoint sp;
     for (; depth < settings_.max_depth; ++depth) {
-        if (!render_scene_.intersect(ray, sp)) return;
+        if (!render_scene_.intersect(ray, sp, leaving)) return;
+        leaving = &sp.hit; // every ray below is spawned from this hit
         length += sp.hit.t;
         emit(nullptr, weight * sp.emitted);
         const Vec3 dir = Vec3::from(ray.dir);
@@ -153,7 +156,7 @@ void Renderer::trace_split_path(const ppm_ray &start, Rgb weight, int depth, dou
                                   transmitted.pdf < 1 && reflected.wi.z * transmitted.wi.z < 0;
         if (two_branches && budget > 0) {
             --budget;
-            trace_split_path(spawn_ray(sp.hit, sp.frame.to_world(reflected.wi)),
+            trace_split_path(spawn_ray(sp.hit, sp.frame.to_world(reflected.wi)), &sp.hit,
                              weight * reflected.weight * reflected.pdf, depth + 1, length, budget, pixel, emit);
             weight *= transmitted.weight * transmitted.pdf;
             ray = spawn_ray(sp.hit, sp.frame.to_world(transmitted.wi));
@@ -234,7 +237,7 @@ std::optional<HitPointBounds> Renderer::eye_pass(std::uint32_t pass) {
                 const size_t first = rows[y].points.size();
                 Rgb emitted;
                 int budget = kSplitBudget;
-                trace_split_path(ray, Rgb(1.0), 0, 0.0, budget, pixel, [&](const VisiblePoint *vp, const Rgb &e) {
+                trace_split_path(ray, nullptr, Rgb(1.0), 0, 0.0, budget, pixel, [&](const VisiblePoint *vp, const Rgb &e) {
                     if (vp) rows[y].points.push_back(*vp);
                     emitted += e;
                 });

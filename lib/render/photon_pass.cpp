@@ -81,8 +81,9 @@ void Renderer::trace_photon(std::uint64_t index, std::uint32_t pass, std::vector
     ray.tnear = 0;
     ray.tfar = INFINITY;
     SurfacePoint sp;
+    const ppm_hit *leaving = nullptr; // the light's surface is not a patch
     for (int depth = 0; depth < settings_.max_depth; ++depth) {
-        if (!render_scene_.intersect(ray, sp)) return;
+        if (!render_scene_.intersect(ray, sp, leaving)) return;
         const Vec3 direction = Vec3::from(ray.dir);
         // Depth 0 is direct light, which the eye pass estimates by itself (unless told not to).
         if ((depth > 0 || !settings_.direct_lighting) && sp.bsdf.has_non_specular() && inside(gather_bounds_, sp.p))
@@ -97,6 +98,7 @@ void Renderer::trace_photon(std::uint64_t index, std::uint32_t pass, std::vector
         if (!(survive > 0) || rng.uniform() >= survive) return;
         flux = scattered / survive;
         ray = spawn_ray(sp.hit, sp.frame.to_world(s.wi));
+        leaving = &sp.hit;
     }
 }
 

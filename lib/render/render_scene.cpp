@@ -65,8 +65,8 @@ size_t RenderScene::pick_light(double u, double *probability) const {
     return i;
 }
 
-bool RenderScene::intersect(const ppm_ray &ray, SurfacePoint &out) const {
-    scene_->intersect(ray, out.hit, false);
+bool RenderScene::intersect(const ppm_ray &ray, SurfacePoint &out, const ppm_hit *leaving) const {
+    scene_->intersect(ray, out.hit, false, leaving);
     if (out.hit.geom_id == PPM_INVALID_ID) return false;
     const Geometry &g = scene_->geometry(out.hit.geom_id);
     out.p = Vec3::from(out.hit.p);

@@ -41,8 +41,9 @@ public:
     // probability. Requires total_power() to be non-zero.
     size_t pick_light(double u, double *probability) const;
 
-    // Closest hit along ray, described; false on a miss.
-    bool intersect(const ppm_ray &ray, SurfacePoint &out) const;
+    // Closest hit along ray, described; false on a miss. `leaving`: the hit the ray was
+    // spawned from, if any (Scene::intersect); it may be &out.hit.
+    bool intersect(const ppm_ray &ray, SurfacePoint &out, const ppm_hit *leaving = nullptr) const;
     bool occluded(const ppm_ray &ray) const { return scene_->occluded(ray); }
 
 private:

@@ -134,8 +134,8 @@ private:
     // Camera paths (eye_pass.cpp).
     void trace_sppm_path(std::uint32_t pixel, std::uint32_t pass);
     template <class Emit>
-    void trace_split_path(const ppm_ray &ray, Rgb weight, int depth, double length, int &budget,
-                          std::uint32_t pixel, Emit &&emit);
+    void trace_split_path(const ppm_ray &ray, const ppm_hit *leaving, Rgb weight, int depth, double length,
+                          int &budget, std::uint32_t pixel, Emit &&emit);
     Rgb direct_light(const VisiblePoint &vp, CounterRng &rng) const;
     VisiblePoint make_visible_point(const SurfacePoint &sp, const Vec3 &ray_dir, const Rgb &weight,
                                     double path_length) const;

@@ -34,6 +34,15 @@ struct HitRecord {
     uint32_t prim_id = 0;
 };
 
+// The surface point a ray leaves, when the caller knows it (the hit a renderer spawned the
+// ray from): a geometry may then rule out the root the ray starts on without a search.
+struct RayOrigin {
+    uint32_t geom_id = 0xFFFFFFFFu; // none
+    uint32_t prim_id = 0;
+    double u = 0, v = 0;
+    Vec3 p; // the hit's point: the surface at (u, v), rounded
+};
+
 struct RayQuery {
     RTCIntersectContext embree; // first member: Embree hands back a pointer to it
 
@@ -46,6 +55,8 @@ struct RayQuery {
     bool any_hit = false;
     bool found = false;
     HitRecord hit;        // best hit so far; hit.t is the current far limit
+    RayOrigin origin;     // where the ray leaves a surface, if known
+    uint32_t tested_geom_id = 0xFFFFFFFEu; // the geometry whose callback runs (user_geometry.h)
 
     // The ray frame for patches, built on first use.
     const RayFrame &frame() {

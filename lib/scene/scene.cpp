@@ -192,7 +192,15 @@ void Scene::require_committed(const char *operation) const {
              std::string(operation) + ": the scene is not committed (call ppm_scene_commit after changes)");
 }
 
-bool Scene::start_query(const ppm_ray &ray, bool any_hit, RayQuery &query, RTCRay &embree_ray) const {
+bool Scene::start_query(const ppm_ray &ray, bool any_hit, const ppm_hit *leaving, RayQuery &query,
+                        RTCRay &embree_ray) const {
+    if (leaving) {
+        query.origin.geom_id = leaving->geom_id;
+        query.origin.prim_id = leaving->prim_id;
+        query.origin.u = leaving->u;
+        query.origin.v = leaving->v;
+        query.origin.p = Vec3::from(leaving->p);
+    }
     query.org = Vec3::from(ray.org);
     query.dir = Vec3::from(ray.dir);
     query.tnear = ray.tnear;
@@ -253,10 +261,10 @@ bool Scene::start_query(const ppm_ray &ray, bool any_hit, RayQuery &query, RTCRa
     return true;
 }
 
-void Scene::intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv) const {
+void Scene::intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv, const ppm_hit *leaving) const {
     RayQuery query;
     RTCRayHit rayhit;
-    if (!start_query(ray, false, query, rayhit.ray)) return write_miss(hit);
+    if (!start_query(ray, false, leaving, query, rayhit.ray)) return write_miss(hit);
     rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
@@ -282,10 +290,10 @@ void Scene::intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv) const {
     if (surface_uv) g.compute_uv(hit);
 }
 
-bool Scene::occluded(const ppm_ray &ray) const {
+bool Scene::occluded(const ppm_ray &ray, const ppm_hit *leaving) const {
     RayQuery query;
     RTCRay embree_ray;
-    if (!start_query(ray, true, query, embree_ray)) return false;
+    if (!start_query(ray, true, leaving, query, embree_ray)) return false;
     if (direct_spheres_.occluded(query)) return true;
     if (bvh_empty_) return false;
     rtcOccluded1(rtc_scene_, &query.embree, &embree_ray);

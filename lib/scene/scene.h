@@ -47,8 +47,10 @@ public:
 
     // Single-ray queries on a committed scene; the ray must be valid (see validate_ray).
     // Without surface_uv, u and v may be left 0 where they cost extra (Geometry::compute_uv).
-    void intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv = true) const;
-    bool occluded(const ppm_ray &ray) const;
+    // `leaving`, if given, is the hit the ray was spawned from (spawn_ray), which lets
+    // patches skip the root the ray starts on; it may be `hit` itself.
+    void intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv = true, const ppm_hit *leaving = nullptr) const;
+    bool occluded(const ppm_ray &ray, const ppm_hit *leaving = nullptr) const;
 
     // Batch queries: validate all rays, then run on the context's threads.
     void intersect(const ppm_ray *rays, size_t count, ppm_hit *hits) const;
@@ -59,7 +61,8 @@ public:
 private:
     // Sets up the query and, unless the BVH is empty, Embree's float ray and context; false if
     // the ray misses the scene's box.
-    bool start_query(const ppm_ray &ray, bool any_hit, RayQuery &query, RTCRay &embree_ray) const;
+    bool start_query(const ppm_ray &ray, bool any_hit, const ppm_hit *leaving, RayQuery &query,
+                     RTCRay &embree_ray) const;
     void require_committed(const char *operation) const;
 
     Context *context_;

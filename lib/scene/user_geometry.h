@@ -2,7 +2,8 @@
 //
 // A kind supplies `bool test(const Data &, unsigned prim, RayQuery &)`, which looks for a hit
 // of primitive `prim` with t in [query.tnear, query.hit.t] (any such hit when query.any_hit)
-// and calls query.record() for it. These callbacks translate that into Embree's float ray.
+// and calls query.record() for it. These callbacks translate that into Embree's float ray,
+// and tell the test whose geometry it runs for (query.tested_geom_id).
 // We only ever trace with rtcIntersect1/rtcOccluded1, so N is 1, but lanes are handled as
 // Embree documents them.
 #pragma once
@@ -17,6 +18,7 @@ void user_intersect(const RTCIntersectFunctionNArguments *args) {
     const Data &data = *static_cast<const Data *>(args->geometryUserPtr);
     RTCRayN *ray = RTCRayHitN_RayN(args->rayhit, args->N);
     RTCHitN *hit = RTCRayHitN_HitN(args->rayhit, args->N);
+    query.tested_geom_id = args->geomID;
     for (unsigned lane = 0; lane < args->N; ++lane) {
         if (!args->valid[lane]) continue;
         if (!Test(data, args->primID, query)) continue;
@@ -34,6 +36,7 @@ template <class Data, bool (*Test)(const Data &, unsigned, RayQuery &)>
 void user_occluded(const RTCOccludedFunctionNArguments *args) {
     RayQuery &query = RayQuery::of(args->context);
     const Data &data = *static_cast<const Data *>(args->geometryUserPtr);
+    query.tested_geom_id = args->geomID;
     for (unsigned lane = 0; lane < args->N; ++lane) {
         if (!args->valid[lane]) continue;
         if (Test(data, args->primID, query)) RTCRayN_tfar(args->ray, args->N, lane) = -INFINITY;

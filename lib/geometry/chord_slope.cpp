@@ -1,0 +1,68 @@
+#include "geometry/chord_slope.h"
+
+#include "geometry/derivative_hull.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+
+namespace ppm {
+
+namespace {
+
+Interval widened(Interval i, double pad) { return {i.lo - pad, i.hi + pad}; }
+double midpoint(Interval i) { return 0.5 * (i.lo + i.hi); }
+
+} // namespace
+
+double chord_slope_bound(const ControlGrid &grid, const Vec3 &n) {
+    Vec3 e1, e2;
+    orthonormal_basis(n, e1, e2);
+    double h[16], q1[16], q2[16], magnitude = 0;
+    for (int k = 0; k < 16; ++k) {
+        const Vec3 c{grid.x[k], grid.y[k], grid.z[k]};
+        h[k] = dot(n, c);
+        q1[k] = dot(e1, c);
+        q2[k] = dot(e2, c);
+        magnitude = std::max(magnitude, max_abs_component(c));
+    }
+    // The control points are the sub-patch's to a few ulps of their magnitude (De Casteljau
+    // cuts, the dot products above); a derivative coefficient 3 (c1 - c0) to six times that.
+    const double pad = 6 * 32 * DBL_EPSILON * magnitude;
+    const Interval ha = widened(derivative_hull_a(h), pad), hb = widened(derivative_hull_b(h), pad);
+    const Interval q1a = widened(derivative_hull_a(q1), pad), q1b = widened(derivative_hull_b(q1), pad);
+    const Interval q2a = widened(derivative_hull_a(q2), pad), q2b = widened(derivative_hull_b(q2), pad);
+
+    // Any invertible Y gives a valid bound; the inverse of the hulls' midpoint Jacobian a good one.
+    const double m00 = midpoint(q1a), m01 = midpoint(q1b), m10 = midpoint(q2a), m11 = midpoint(q2b);
+    const double det = m00 * m11 - m01 * m10;
+    if (!(std::fabs(det) > 0) || !std::isfinite(det)) return INFINITY;
+    const double y00 = m11 / det, y01 = -m01 / det, y10 = -m10 / det, y11 = m00 / det;
+    // Row r of I - Y Dq: identity - (Y_r0 q1 + Y_r1 q2) for the a and the b column.
+    auto entry = [](double identity, Interval u, Interval v) {
+        return Interval{identity - (u.hi + v.hi), identity - (u.lo + v.lo)}.magnitude();
+    };
+    const double row0 = entry(1.0, scale(y00, q1a), scale(y01, q2a)) + entry(0.0, scale(y00, q1b), scale(y01, q2b));
+    const double row1 = entry(0.0, scale(y10, q1a), scale(y11, q2a)) + entry(1.0, scale(y10, q1b), scale(y11, q2b));
+    const double contraction = std::max(row0, row1) + 1e-12; // plus rounding of the lines above
+    if (!(contraction < 0.99)) return INFINITY;
+    const double y_norm = std::max(std::fabs(y00) + std::fabs(y01), std::fabs(y10) + std::fabs(y11));
+    const double slope = (ha.magnitude() + hb.magnitude()) * y_norm / (1 - contraction) * (1 + 1e-9);
+    return std::isfinite(slope) ? slope : INFINITY;
+}
+
+bool leaves_for_good(const Vec3 &n, double slope, const Vec3 &offset, double offset_error, const Vec3 &dir) {
+    if (!(slope < INFINITY)) return false;
+    const double rise_offset = dot(n, offset), rise_dir = dot(n, dir);
+    if (!(rise_offset * rise_dir > 0)) return false; // not both to one side of the plane
+    const double side = rise_offset > 0 ? 1.0 : -1.0;
+    // |v x n| is the in-plane length in any orthonormal frame around n; the dot and cross
+    // products round by a few ulps of |v|.
+    auto steep = [&](const Vec3 &v, double rise, double error) {
+        const double rounding = 16 * DBL_EPSILON * (std::fabs(v.x) + std::fabs(v.y) + std::fabs(v.z));
+        return side * rise - error - rounding > slope * (length(cross(v, n)) + error + rounding);
+    };
+    return steep(offset, rise_offset, offset_error) && steep(dir, rise_dir, 0.0);
+}
+
+} // namespace ppm
