@@ -65,8 +65,9 @@ VisiblePoint Renderer::make_visible_point(const SurfacePoint &sp, const Vec3 &ra
     return vp;
 }
 
-// One sample on every light, with a shadow ray each.
-Rgb Renderer::direct_light(const VisiblePoint &vp, CounterRng &rng) const {
+// One sample on every light, with a shadow ray each. `at`: the visible point's hit, if kept
+// (the shadow rays leave it: Scene::occluded).
+Rgb Renderer::direct_light(const VisiblePoint &vp, CounterRng &rng, const ppm_hit *at) const {
     Rgb sum;
     if (!settings_.direct_lighting) return sum;
     for (const Light &light : render_scene_.lights()) {
@@ -79,7 +80,7 @@ Rgb Renderer::direct_light(const VisiblePoint &vp, CounterRng &rng) const {
         // Stop short of the light's own surface (area lights are geometry too).
         const double tfar = ls.distance * (1 - 1e-7) - 8 * vp.p_error;
         if (tfar <= 0) continue;
-        if (render_scene_.occluded(spawn_ray(vp.p, vp.normal, vp.p_error, ls.direction, tfar))) continue;
+        if (render_scene_.occluded(spawn_ray(vp.p, vp.normal, vp.p_error, ls.direction, tfar), at)) continue;
         sum += vp.weight * f * ls.radiance_over_pdf * std::fabs(wi_local.z);
     }
     return sum;
@@ -113,7 +114,7 @@ void Renderer::trace_sppm_path(std::uint32_t pixel, std::uint32_t pass) {
         ray = spawn_ray(sp.hit, sp.frame.to_world(s.wi));
         leaving = &sp.hit;
     }
-    if (vp.valid) direct += direct_light(vp, rng);
+    if (vp.valid) direct += direct_light(vp, rng, &sp.hit); // the path ended at vp's hit
     pass_direct_[pixel] = direct;
     store_hit_point(pixel, vp);
 }
@@ -272,7 +273,7 @@ void Renderer::direct_pass(std::uint32_t pass) {
             for (std::size_t slot = range.begin(); slot < range.end(); ++slot) {
                 CounterRng rng(settings_.seed, kDirectStream, pass, slot);
                 const VisiblePoint &vp = visible_[slot];
-                pass_direct_[slot] = fixed_emitted_[slot] + (vp.valid ? direct_light(vp, rng) : Rgb());
+                pass_direct_[slot] = fixed_emitted_[slot] + (vp.valid ? direct_light(vp, rng, nullptr) : Rgb());
             }
         });
     });

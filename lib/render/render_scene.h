@@ -44,7 +44,9 @@ public:
     // Closest hit along ray, described; false on a miss. `leaving`: the hit the ray was
     // spawned from, if any (Scene::intersect); it may be &out.hit.
     bool intersect(const ppm_ray &ray, SurfacePoint &out, const ppm_hit *leaving = nullptr) const;
-    bool occluded(const ppm_ray &ray) const { return scene_->occluded(ray); }
+    bool occluded(const ppm_ray &ray, const ppm_hit *leaving = nullptr) const {
+        return scene_->occluded(ray, leaving);
+    }
 
 private:
     const Scene *scene_;

@@ -136,7 +136,7 @@ private:
     template <class Emit>
     void trace_split_path(const ppm_ray &ray, const ppm_hit *leaving, Rgb weight, int depth, double length,
                           int &budget, std::uint32_t pixel, Emit &&emit);
-    Rgb direct_light(const VisiblePoint &vp, CounterRng &rng) const;
+    Rgb direct_light(const VisiblePoint &vp, CounterRng &rng, const ppm_hit *at) const;
     VisiblePoint make_visible_point(const SurfacePoint &sp, const Vec3 &ray_dir, const Rgb &weight,
                                     double path_length) const;
     double footprint_r2(double path_length) const;
