@@ -114,12 +114,9 @@ bool misses_chord_slabs(const Projected &p, double noise) {
     const double dv_x = (p.x[12] + p.x[15]) - (p.x[0] + p.x[3]), dv_y = (p.y[12] + p.y[15]) - (p.y[0] + p.y[3]);
     const double normals[2][2] = {{-du_y, du_x}, {-dv_y, dv_x}};
     for (const auto &n : normals) {
-        double lo = INFINITY, hi = -INFINITY;
-        for (int k = 0; k < 16; ++k) {
-            const double d = n[0] * p.x[k] + n[1] * p.y[k];
-            lo = std::min(lo, d);
-            hi = std::max(hi, d);
-        }
+        double d[16], lo, hi;
+        for (int k = 0; k < 16; ++k) d[k] = n[0] * p.x[k] + n[1] * p.y[k];
+        min_max16(d, lo, hi);
         const double slack = noise * (std::fabs(n[0]) + std::fabs(n[1]));
         if (lo > slack || hi < -slack) return true;
     }
