@@ -2,6 +2,10 @@
 
 #include <cfloat>
 
+#if defined(__AVX2__) && defined(__FMA__)
+#include <immintrin.h>
+#endif
+
 namespace ppm {
 
 namespace {
@@ -133,6 +137,41 @@ IntervalMatrix IntervalMatrix::of(double a, double b) {
 void sub_patch_soa(const BezierPatch &patch, const IntervalMatrix &along_u,
                    const IntervalMatrix &along_v, double x[16], double y[16], double z[16]) {
     // Rows first: r[i][j] = sum_l u.w[j][l] P[i][l]; then columns: sum_k v.w[i][k] r[k][j].
+#if defined(__AVX2__) && defined(__FMA__)
+    // A row of r or of the result is one register over j; this runs for every ray that gets
+    // past a sub-patch's culling, and the scalar loops took 2.5x the instructions.
+    const __m256d w0 = _mm256_loadu_pd(along_u.w[0]), w1 = _mm256_loadu_pd(along_u.w[1]);
+    const __m256d w2 = _mm256_loadu_pd(along_u.w[2]), w3 = _mm256_loadu_pd(along_u.w[3]);
+    const __m256d t0 = _mm256_unpacklo_pd(w0, w1), t1 = _mm256_unpackhi_pd(w0, w1);
+    const __m256d t2 = _mm256_unpacklo_pd(w2, w3), t3 = _mm256_unpackhi_pd(w2, w3);
+    const __m256d column[4] = {_mm256_permute2f128_pd(t0, t2, 0x20), _mm256_permute2f128_pd(t1, t3, 0x20),
+                               _mm256_permute2f128_pd(t0, t2, 0x31), _mm256_permute2f128_pd(t1, t3, 0x31)};
+    __m256d rx[4], ry[4], rz[4];
+    for (int i = 0; i < 4; ++i) {
+        const Vec3 *row = &patch.p[i * 4];
+        rx[i] = _mm256_mul_pd(column[0], _mm256_set1_pd(row[0].x));
+        ry[i] = _mm256_mul_pd(column[0], _mm256_set1_pd(row[0].y));
+        rz[i] = _mm256_mul_pd(column[0], _mm256_set1_pd(row[0].z));
+        for (int l = 1; l < 4; ++l) {
+            rx[i] = _mm256_fmadd_pd(column[l], _mm256_set1_pd(row[l].x), rx[i]);
+            ry[i] = _mm256_fmadd_pd(column[l], _mm256_set1_pd(row[l].y), ry[i]);
+            rz[i] = _mm256_fmadd_pd(column[l], _mm256_set1_pd(row[l].z), rz[i]);
+        }
+    }
+    for (int i = 0; i < 4; ++i) {
+        __m256d w = _mm256_set1_pd(along_v.w[i][0]);
+        __m256d sx = _mm256_mul_pd(w, rx[0]), sy = _mm256_mul_pd(w, ry[0]), sz = _mm256_mul_pd(w, rz[0]);
+        for (int k = 1; k < 4; ++k) {
+            w = _mm256_set1_pd(along_v.w[i][k]);
+            sx = _mm256_fmadd_pd(w, rx[k], sx);
+            sy = _mm256_fmadd_pd(w, ry[k], sy);
+            sz = _mm256_fmadd_pd(w, rz[k], sz);
+        }
+        _mm256_storeu_pd(x + 4 * i, sx);
+        _mm256_storeu_pd(y + 4 * i, sy);
+        _mm256_storeu_pd(z + 4 * i, sz);
+    }
+#else
     double rx[16], ry[16], rz[16];
     for (int i = 0; i < 4; ++i)
         for (int j = 0; j < 4; ++j) {
@@ -159,6 +198,7 @@ void sub_patch_soa(const BezierPatch &patch, const IntervalMatrix &along_u,
             y[i * 4 + j] = sy;
             z[i * 4 + j] = sz;
         }
+#endif
 }
 
 Box3 control_bounds(const BezierPatch &patch) {
