@@ -26,10 +26,10 @@ void exact_triangle_hit(const MeshData &m, unsigned prim, const RayQuery &query,
 }
 
 void mesh_filter(const RTCFilterFunctionNArguments *args) {
-    RayQuery &query = RayQuery::of(args->context);
     const auto &mesh = *static_cast<const MeshData *>(args->geometryUserPtr);
     for (unsigned lane = 0; lane < args->N; ++lane) {
         if (!args->valid[lane]) continue;
+        RayQuery &query = RayQuery::of(args->context, RTCRayN_id(args->ray, args->N, lane));
         const unsigned prim = RTCHitN_primID(args->hit, args->N, lane);
         double t = query.t_shift + RTCRayN_tfar(args->ray, args->N, lane) / query.dir_length;
         double u = RTCHitN_u(args->hit, args->N, lane), v = RTCHitN_v(args->hit, args->N, lane);

@@ -49,6 +49,7 @@ inline double uniform_from_bits32(std::uint32_t bits) { return static_cast<doubl
 // has 2^26 dimensions; beyond that they repeat. Lives on the stack; never allocates.
 class CounterRng {
 public:
+    CounterRng() = default; // key and counter 0: assign a real one before use
     CounterRng(std::uint64_t seed, std::uint8_t stream, std::uint32_t pass, std::uint64_t index)
         : key_{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32)},
           counter_{static_cast<std::uint32_t>(index), static_cast<std::uint32_t>(index >> 32), pass,

@@ -19,8 +19,8 @@ constexpr std::uint8_t kCameraStream = 0;
 constexpr std::uint8_t kDirectStream = 2; // PPM: direct light at the fixed points
 // PPM splits a pixel's path at glass at most this many times; further glass is sampled.
 constexpr int kSplitBudget = 16;
-// SPPM fetches a pixel's statistics this many pixels ahead.
-constexpr std::uint32_t kPrefetchAhead = 8;
+// SPPM traces the camera rays of this many consecutive pixels as one coherent stream.
+constexpr std::uint32_t kPathGroup = static_cast<std::uint32_t>(Scene::max_stream);
 
 ppm_ray camera_ray(const Camera &camera, std::uint32_t pixel, CounterRng &rng) {
     const std::uint32_t width = static_cast<std::uint32_t>(camera.width()), row = pixel / width;
@@ -86,16 +86,28 @@ Rgb Renderer::direct_light(const VisiblePoint &vp, CounterRng &rng, const ppm_hi
     return sum;
 }
 
-void Renderer::trace_sppm_path(std::uint32_t pixel, std::uint32_t pass) {
-    CounterRng rng(settings_.seed, kCameraStream, pass, pixel);
-    ppm_ray ray = camera_ray(camera_, pixel, rng);
+void Renderer::trace_sppm_paths(std::uint32_t first, std::uint32_t count, std::uint32_t pass) {
+    CounterRng rngs[kPathGroup];
+    ppm_ray rays[kPathGroup];
+    SurfacePoint first_hits[kPathGroup];
+    bool found[kPathGroup];
+    count = std::min(count, kPathGroup);
+    for (std::uint32_t k = 0; k < count; ++k) {
+        // The paths end reading their pixels' radii: fetch them early, or each path waits for
+        // its 64-byte statistics record (~5 % of the eye pass).
+        __builtin_prefetch(&stats_[first + k]);
+        rngs[k] = CounterRng(settings_.seed, kCameraStream, pass, first + k);
+        rays[k] = camera_ray(camera_, first + k, rngs[k]);
+    }
+    render_scene_.intersect_stream(rays, count, first_hits, found);
+    for (std::uint32_t k = 0; k < count; ++k) finish_sppm_path(first + k, rngs[k], rays[k], first_hits[k], found[k]);
+}
+
+void Renderer::finish_sppm_path(std::uint32_t pixel, CounterRng &rng, ppm_ray ray, SurfacePoint &sp, bool found) {
     VisiblePoint vp;
     Rgb weight(1.0), direct;
     double length = 0;
-    SurfacePoint sp;
-    const ppm_hit *leaving = nullptr; // the lens
-    for (int depth = 0; depth < settings_.max_depth; ++depth) {
-        if (!render_scene_.intersect(ray, sp, leaving)) break;
+    for (int depth = 0; found; ++depth) {
         length += sp.hit.t;
         direct += weight * sp.emitted;
         const double u_lobe = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
@@ -111,8 +123,9 @@ void Renderer::trace_sppm_path(std::uint32_t pixel, std::uint32_t pass) {
         if (!s.valid()) break;
         weight *= s.weight;
         if (weight.is_black()) break;
+        if (depth + 1 >= settings_.max_depth) break;
         ray = spawn_ray(sp.hit, sp.frame.to_world(s.wi));
-        leaving = &sp.hit;
+        found = render_scene_.intersect(ray, sp, &sp.hit); // leaving sp.hit
     }
     if (vp.valid) direct += direct_light(vp, rng, &sp.hit); // the path ended at vp's hit
     pass_direct_[pixel] = direct;
@@ -205,12 +218,10 @@ std::optional<HitPointBounds> Renderer::eye_pass(std::uint32_t pass) {
                 Range(0, pixels, 256), HitPointBounds{},
                 [&](const Range &range, HitPointBounds bounds) {
                     if (cancelled()) return bounds;
-                    for (std::uint32_t p = range.begin(); p < range.end(); ++p) {
-                        // The path ends reading the pixel's radius: fetch it early, or each
-                        // path waits for its 64-byte statistics record (~5 % of the eye pass).
-                        if (p + kPrefetchAhead < range.end()) __builtin_prefetch(&stats_[p + kPrefetchAhead]);
-                        trace_sppm_path(p, pass);
-                        bounds.add(hit_points_[p]);
+                    for (std::uint32_t p = range.begin(); p < range.end(); p += kPathGroup) {
+                        const std::uint32_t count = std::min(kPathGroup, range.end() - p);
+                        trace_sppm_paths(p, count, pass);
+                        for (std::uint32_t k = 0; k < count; ++k) bounds.add(hit_points_[p + k]);
                     }
                     return bounds;
                 },

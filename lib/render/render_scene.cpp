@@ -68,6 +68,22 @@ size_t RenderScene::pick_light(double u, double *probability) const {
 bool RenderScene::intersect(const ppm_ray &ray, SurfacePoint &out, const ppm_hit *leaving) const {
     scene_->intersect(ray, out.hit, false, leaving);
     if (out.hit.geom_id == PPM_INVALID_ID) return false;
+    shade(ray, out);
+    return true;
+}
+
+void RenderScene::intersect_stream(const ppm_ray *rays, size_t count, SurfacePoint *out, bool *found) const {
+    ppm_hit hits[Scene::max_stream];
+    count = std::min(count, Scene::max_stream);
+    scene_->intersect_stream(rays, nullptr, count, hits, false);
+    for (size_t i = 0; i < count; ++i) {
+        out[i].hit = hits[i];
+        found[i] = hits[i].geom_id != PPM_INVALID_ID;
+        if (found[i]) shade(rays[i], out[i]);
+    }
+}
+
+void RenderScene::shade(const ppm_ray &ray, SurfacePoint &out) const {
     const Geometry &g = scene_->geometry(out.hit.geom_id);
     out.p = Vec3::from(out.hit.p);
     out.ng = Vec3::from(out.hit.ng);
@@ -84,7 +100,6 @@ bool RenderScene::intersect(const ppm_ray &ray, SurfacePoint &out, const ppm_hit
         out.bsdf = material.bsdf;
     }
     out.emitted = (!g.emission.is_black() && dot(out.ng, wo) > 0) ? g.emission : Rgb();
-    return true;
 }
 
 } // namespace ppm

@@ -44,11 +44,17 @@ public:
     // Closest hit along ray, described; false on a miss. `leaving`: the hit the ray was
     // spawned from, if any (Scene::intersect); it may be &out.hit.
     bool intersect(const ppm_ray &ray, SurfacePoint &out, const ppm_hit *leaving = nullptr) const;
+    // The same for up to Scene::max_stream rays from no surface (a camera's), traced as a
+    // coherent stream: found[i] and out[i] as intersect(rays[i], out[i]) gives.
+    void intersect_stream(const ppm_ray *rays, size_t count, SurfacePoint *out, bool *found) const;
     bool occluded(const ppm_ray &ray, const ppm_hit *leaving = nullptr) const {
         return scene_->occluded(ray, leaving);
     }
 
 private:
+    // Fills `out` from its described hit, seen along `ray`.
+    void shade(const ppm_ray &ray, SurfacePoint &out) const;
+
     const Scene *scene_;
     std::vector<Material> geometry_materials_; // one per geometry
     std::vector<Light> lights_;

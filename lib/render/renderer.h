@@ -132,7 +132,10 @@ private:
     bool cancelled() const { return cancel_requested_.load(std::memory_order_relaxed); }
 
     // Camera paths (eye_pass.cpp).
-    void trace_sppm_path(std::uint32_t pixel, std::uint32_t pass);
+    // SPPM: the paths of `count` (at most Scene::max_stream) pixels from `first` on, their
+    // camera rays traced together; each path goes on alone from its camera ray's hit.
+    void trace_sppm_paths(std::uint32_t first, std::uint32_t count, std::uint32_t pass);
+    void finish_sppm_path(std::uint32_t pixel, CounterRng &rng, ppm_ray ray, SurfacePoint &sp, bool found);
     template <class Emit>
     void trace_split_path(const ppm_ray &ray, const ppm_hit *leaving, Rgb weight, int depth, double length,
                           int &budget, std::uint32_t pixel, Emit &&emit);

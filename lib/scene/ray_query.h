@@ -67,9 +67,8 @@ struct RayQuery {
         return frame_;
     }
 
-    static RayQuery &of(RTCIntersectContext *context) {
-        return *reinterpret_cast<RayQuery *>(context);
-    }
+    // The query of the Embree ray with this id that a callback got `context` for.
+    static RayQuery &of(RTCIntersectContext *context, unsigned ray_id);
 
     // Records a hit known to lie in [tnear, hit.t]; the caller sets hit.geom_id.
     void record(double t, double u, double v, uint32_t prim_id) {
@@ -89,5 +88,20 @@ private:
     RayFrame frame_;
     bool frame_ready_ = false;
 };
+
+// Embree ray ids. A single ray's query is its own context (RayQuery::embree) and its ray has
+// kSingleRayId; the rays of a stream (Scene::intersect_stream) are numbered 0, 1, ... and
+// share a StreamContext that lists their queries.
+constexpr unsigned kSingleRayId = 0xFFFFFFFFu;
+
+struct StreamContext {
+    RTCIntersectContext embree; // first member, as in RayQuery
+    RayQuery *queries = nullptr;
+};
+
+inline RayQuery &RayQuery::of(RTCIntersectContext *context, unsigned ray_id) {
+    if (ray_id == kSingleRayId) return *reinterpret_cast<RayQuery *>(context);
+    return reinterpret_cast<StreamContext *>(context)->queries[ray_id];
+}
 
 } // namespace ppm

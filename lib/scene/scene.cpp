@@ -256,27 +256,71 @@ bool Scene::start_query(const ppm_ray &ray, bool any_hit, const ppm_hit *leaving
     embree_ray.tfar = query.embree_tfar(t1);
     embree_ray.time = 0.0f;
     embree_ray.mask = 0xFFFFFFFFu; // masks are enabled in Debian's Embree build
-    embree_ray.id = 0;
+    embree_ray.id = kSingleRayId;
     embree_ray.flags = 0;
+    return true;
+}
+
+bool Scene::start_intersect(const ppm_ray &ray, const ppm_hit *leaving, RayQuery &query, RTCRayHit &rayhit) const {
+    if (!start_query(ray, false, leaving, query, rayhit.ray)) return false;
+    rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    // The big spheres first: a hit there shortens the ray Embree traverses.
+    const int nearest = direct_spheres_.intersect(query);
+    if (nearest >= 0) {
+        query.hit.geom_id = direct_sphere_ids_[nearest];
+        if (!bvh_empty_) rayhit.ray.tfar = std::min(rayhit.ray.tfar, query.embree_tfar(query.hit.t));
+    }
     return true;
 }
 
 void Scene::intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv, const ppm_hit *leaving) const {
     RayQuery query;
     RTCRayHit rayhit;
-    if (!start_query(ray, false, leaving, query, rayhit.ray)) return write_miss(hit);
-    rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    // The big spheres first: a hit there shortens the ray Embree traverses.
-    const int nearest = direct_spheres_.intersect(query);
-    if (nearest >= 0) query.hit.geom_id = direct_sphere_ids_[nearest];
-    if (!bvh_empty_) {
-        if (nearest >= 0) rayhit.ray.tfar = std::min(rayhit.ray.tfar, query.embree_tfar(query.hit.t));
-        rtcIntersect1(rtc_scene_, &query.embree, &rayhit);
-    }
-    if (!query.found) return write_miss(hit);
+    if (!start_intersect(ray, leaving, query, rayhit)) return write_miss(hit);
+    if (!bvh_empty_) rtcIntersect1(rtc_scene_, &query.embree, &rayhit);
+    finish_intersect(query, hit, surface_uv);
+}
 
+void Scene::intersect_stream(const ppm_ray *rays, const ppm_hit *const *leaving, size_t count, ppm_hit *hits,
+                             bool surface_uv) const {
+    RayQuery queries[max_stream];
+    RTCRayHit rayhits[max_stream];
+    bool started[max_stream];
+    count = std::min(count, max_stream);
+    for (size_t i = 0; i < count; ++i) {
+        started[i] = start_intersect(rays[i], leaving ? leaving[i] : nullptr, queries[i], rayhits[i]);
+        if (bvh_empty_) continue;
+        rayhits[i].ray.id = static_cast<unsigned>(i);
+        // A ray that misses the scene's box is not set up: Embree skips rays with tnear > tfar.
+        if (!started[i]) {
+            RTCRay &r = rayhits[i].ray;
+            r.org_x = r.org_y = r.org_z = r.dir_x = r.dir_y = r.time = 0.0f;
+            r.dir_z = 1.0f;
+            r.tnear = 1.0f;
+            r.tfar = 0.0f;
+            r.mask = 0;
+            r.flags = 0;
+        }
+    }
+    if (!bvh_empty_) {
+        StreamContext context;
+        rtcInitIntersectContext(&context.embree);
+        context.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        context.queries = queries;
+        rtcIntersect1M(rtc_scene_, &context.embree, rayhits, static_cast<unsigned>(count), sizeof(RTCRayHit));
+    }
+    for (size_t i = 0; i < count; ++i) {
+        if (started[i])
+            finish_intersect(queries[i], hits[i], surface_uv);
+        else
+            write_miss(hits[i]);
+    }
+}
+
+void Scene::finish_intersect(const RayQuery &query, ppm_hit &hit, bool surface_uv) const {
+    if (!query.found) return write_miss(hit);
     // Every field is set below (describe_hit writes p, p_error, ng and ns).
     const Geometry &g = *geometries_[query.hit.geom_id];
     hit.reserved = 0;

@@ -52,6 +52,13 @@ public:
     void intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv = true, const ppm_hit *leaving = nullptr) const;
     bool occluded(const ppm_ray &ray, const ppm_hit *leaving = nullptr) const;
 
+    // Closest hits of up to max_stream rays at once, traced by Embree as a coherent stream
+    // (a camera's rays): hits[i] as intersect(rays[i], hits[i], surface_uv, leaving[i]) gives;
+    // `leaving` may be null (no ray leaves a known hit). Rays beyond max_stream are ignored.
+    static constexpr size_t max_stream = 32;
+    void intersect_stream(const ppm_ray *rays, const ppm_hit *const *leaving, size_t count, ppm_hit *hits,
+                          bool surface_uv = true) const;
+
     // Batch queries: validate all rays, then run on the context's threads.
     void intersect(const ppm_ray *rays, size_t count, ppm_hit *hits) const;
     void occluded(const ppm_ray *rays, size_t count, uint8_t *occluded) const;
@@ -63,6 +70,10 @@ private:
     // the ray misses the scene's box.
     bool start_query(const ppm_ray &ray, bool any_hit, const ppm_hit *leaving, RayQuery &query,
                      RTCRay &embree_ray) const;
+    // intersect() in two halves around Embree's traversal: the query (and the spheres kept
+    // out of the BVH) before, the hit's description after.
+    bool start_intersect(const ppm_ray &ray, const ppm_hit *leaving, RayQuery &query, RTCRayHit &rayhit) const;
+    void finish_intersect(const RayQuery &query, ppm_hit &hit, bool surface_uv) const;
     void require_committed(const char *operation) const;
 
     Context *context_;

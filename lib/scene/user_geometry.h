@@ -4,8 +4,8 @@
 // of primitive `prim` with t in [query.tnear, query.hit.t] (any such hit when query.any_hit)
 // and calls query.record() for it. These callbacks translate that into Embree's float ray,
 // and tell the test whose geometry it runs for (query.tested_geom_id).
-// We only ever trace with rtcIntersect1/rtcOccluded1, so N is 1, but lanes are handled as
-// Embree documents them.
+// Single rays (rtcIntersect1/rtcOccluded1) come with N = 1; streams (rtcIntersect1M) in
+// Embree's packets, each lane with the query its ray id names (RayQuery::of).
 #pragma once
 
 #include "scene/geometry.h"
@@ -14,13 +14,13 @@ namespace ppm {
 
 template <class Data, bool (*Test)(const Data &, unsigned, RayQuery &)>
 void user_intersect(const RTCIntersectFunctionNArguments *args) {
-    RayQuery &query = RayQuery::of(args->context);
     const Data &data = *static_cast<const Data *>(args->geometryUserPtr);
     RTCRayN *ray = RTCRayHitN_RayN(args->rayhit, args->N);
     RTCHitN *hit = RTCRayHitN_HitN(args->rayhit, args->N);
-    query.tested_geom_id = args->geomID;
     for (unsigned lane = 0; lane < args->N; ++lane) {
         if (!args->valid[lane]) continue;
+        RayQuery &query = RayQuery::of(args->context, RTCRayN_id(ray, args->N, lane));
+        query.tested_geom_id = args->geomID;
         if (!Test(data, args->primID, query)) continue;
         query.hit.geom_id = args->geomID;
         RTCRayN_tfar(ray, args->N, lane) = query.embree_tfar(query.hit.t);
@@ -34,11 +34,11 @@ void user_intersect(const RTCIntersectFunctionNArguments *args) {
 
 template <class Data, bool (*Test)(const Data &, unsigned, RayQuery &)>
 void user_occluded(const RTCOccludedFunctionNArguments *args) {
-    RayQuery &query = RayQuery::of(args->context);
     const Data &data = *static_cast<const Data *>(args->geometryUserPtr);
-    query.tested_geom_id = args->geomID;
     for (unsigned lane = 0; lane < args->N; ++lane) {
         if (!args->valid[lane]) continue;
+        RayQuery &query = RayQuery::of(args->context, RTCRayN_id(args->ray, args->N, lane));
+        query.tested_geom_id = args->geomID;
         if (Test(data, args->primID, query)) RTCRayN_tfar(args->ray, args->N, lane) = -INFINITY;
     }
 }
