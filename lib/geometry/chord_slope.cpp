@@ -56,11 +56,13 @@ bool leaves_for_good(const Vec3 &n, double slope, const Vec3 &offset, double off
     const double rise_offset = dot(n, offset), rise_dir = dot(n, dir);
     if (!(rise_offset * rise_dir > 0)) return false; // not both to one side of the plane
     const double side = rise_offset > 0 ? 1.0 : -1.0;
-    // |v x n| is the in-plane length in any orthonormal frame around n; the dot and cross
-    // products round by a few ulps of |v|.
+    // |v x n| / |n| is the in-plane length in any orthonormal frame around n; an error e in v
+    // changes n . v and |v x n| by at most |e| |n| <= |e| |n|_1. The dot and cross products
+    // round by a few ulps of |v| |n|.
+    const double n_1 = std::fabs(n.x) + std::fabs(n.y) + std::fabs(n.z);
     auto steep = [&](const Vec3 &v, double rise, double error) {
-        const double rounding = 16 * DBL_EPSILON * (std::fabs(v.x) + std::fabs(v.y) + std::fabs(v.z));
-        return side * rise - error - rounding > slope * (length(cross(v, n)) + error + rounding);
+        const double slack = error * n_1 + 16 * DBL_EPSILON * n_1 * (std::fabs(v.x) + std::fabs(v.y) + std::fabs(v.z));
+        return side * rise - slack > slope * (length(cross(v, n)) + slack);
     };
     return steep(offset, rise_offset, offset_error) && steep(dir, rise_dir, 0.0);
 }

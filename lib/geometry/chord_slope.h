@@ -33,7 +33,9 @@ namespace ppm {
 double chord_slope_bound(const ControlGrid &grid, const Vec3 &n);
 
 // Whether the ray org + t dir, t >= 0, with org = S(w0) + offset for a point S(w0) of the
-// sub-patch (offset known to within offset_error), cannot meet the sub-patch at all.
+// sub-patch (offset known to within offset_error), cannot meet the sub-patch at all. n is the
+// normal the slope was bound for or any positive multiple of it (a float rounding of it, as
+// stored): rises and runs scale alike, and no square root is needed here.
 bool leaves_for_good(const Vec3 &n, double slope, const Vec3 &offset, double offset_error, const Vec3 &dir);
 
 } // namespace ppm

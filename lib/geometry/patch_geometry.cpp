@@ -43,6 +43,22 @@ Domain domain_of(int row, int column, int per_edge) {
             row + 1 == per_edge ? 1.0 : (row + 1) * step};
 }
 
+// Sub-patch `prim`: its patch, row and column there, and its domain in the patch.
+struct SubPatchPlace {
+    unsigned patch = 0;
+    int row = 0, column = 0;
+    Domain domain{};
+    static SubPatchPlace of(unsigned prim, int per_edge) {
+        SubPatchPlace p;
+        const unsigned per_patch = unsigned(per_edge * per_edge), within = prim % per_patch;
+        p.patch = prim / per_patch;
+        p.row = int(within) / per_edge;
+        p.column = int(within) % per_edge;
+        p.domain = domain_of(p.row, p.column, per_edge);
+        return p;
+    }
+};
+
 // Cheap rejection before the patch math: Embree only tested a float box. Clip the ray to
 // the sub-patch's box in double and check that the clipped segment reaches the slab between
 // the sub-patch's bounding planes. Both are padded by the tolerance and rounding.
@@ -72,9 +88,7 @@ bool segment_misses(const PatchGeometry::SubPatch &sub, const RayQuery &query) {
            (d0 > sub.slab_hi + pad && d1 > sub.slab_hi + pad);
 }
 
-Vec3 unit_normal(const PatchGeometry::SubPatch &sub) {
-    return normalize(Vec3{sub.normal[0], sub.normal[1], sub.normal[2]});
-}
+Vec3 stored_normal(const PatchGeometry::SubPatch &sub) { return {sub.normal[0], sub.normal[1], sub.normal[2]}; }
 
 // Whether the ray leaves a point of this sub-patch (the caller said where it starts) and
 // cannot meet it again: chord_slope.h. The hit point the ray was spawned from is the
@@ -86,20 +100,24 @@ bool leaves_own_sub_patch(const PatchGeometry::Data &data, const PatchGeometry::
     if (from.prim_id != patch_index || !(query.tnear >= 0)) return false;
     if (!(from.u >= d.u0 && from.u <= d.u1 && from.v >= d.v0 && from.v <= d.v1)) return false;
     const double offset_error = 64 * DBL_EPSILON * (*data.magnitudes)[patch_index];
-    return leaves_for_good(unit_normal(sub), sub.chord_slope, query.org - from.p, offset_error, query.dir);
+    return leaves_for_good(stored_normal(sub), sub.chord_slope, query.org - from.p, offset_error, query.dir);
 }
 
 bool test_sub_patch(const PatchGeometry::Data &data, unsigned prim, RayQuery &query) {
     const PatchGeometry::SubPatch &sub = data.sub_patches[prim];
-    const unsigned per_patch = unsigned(data.per_edge * data.per_edge);
-    const unsigned patch_index = prim / per_patch, within = prim % per_patch;
-    const int row = int(within) / data.per_edge, column = int(within) % data.per_edge;
-    const Domain d = domain_of(row, column, data.per_edge);
-    if (query.origin.geom_id == query.tested_geom_id && leaves_own_sub_patch(data, sub, patch_index, d, query))
-        return false;
+    // Where the sub-patch lies in its patch: integer divisions, left for the rays that need it.
+    SubPatchPlace at;
+    const bool leaves_this_geometry = query.origin.geom_id == query.tested_geom_id;
+    if (leaves_this_geometry) {
+        at = SubPatchPlace::of(prim, data.per_edge);
+        if (leaves_own_sub_patch(data, sub, at.patch, at.domain, query)) return false;
+    }
     if (segment_misses(sub, query)) return false;
+    if (!leaves_this_geometry) at = SubPatchPlace::of(prim, data.per_edge);
+    const unsigned patch_index = at.patch;
+    const Domain &d = at.domain;
     ControlGrid grid;
-    sub_patch_soa((*data.patches)[patch_index], data.intervals[column], data.intervals[row], grid.x,
+    sub_patch_soa((*data.patches)[patch_index], data.intervals[at.column], data.intervals[at.row], grid.x,
                   grid.y, grid.z);
     grid.derivative_bound = sub.derivative_bound;
     PatchRootQuery patch_query;
@@ -150,7 +168,7 @@ PatchGeometry::SubPatch make_sub_patch(const BezierPatch &patch, const IntervalM
     sub.slab_lo = round_down(lo);
     sub.slab_hi = round_up(hi);
     sub.derivative_bound = round_up(grid.bound_derivatives());
-    sub.chord_slope = round_up(chord_slope_bound(grid, unit_normal(sub)));
+    sub.chord_slope = round_up(chord_slope_bound(grid, normalize(stored_normal(sub))));
     return sub;
 }
 

@@ -9,6 +9,9 @@ namespace ppm {
 namespace {
 
 bool test_quad(const QuadGeometry::Data &q, unsigned, RayQuery &query) {
+    // A ray spawned from this quad starts off its plane, past the hit's error bound, on the
+    // side it travels to (spawn_ray): it meets the plane only behind its origin.
+    if (query.origin.geom_id == query.tested_geom_id && query.tnear >= 0) return false;
     const double denominator = dot(query.dir, q.normal);
     if (denominator == 0) return false; // parallel: a two-sided quad has no area to hit
     const double t = dot(q.origin - query.org, q.normal) / denominator;

@@ -169,9 +169,12 @@ DirectLightSample Light::sample_direct(const Vec3 &p, double u1, double u2) cons
         const double d2 = length2(to_light);
         s.distance = std::sqrt(d2);
         if (!(s.distance > 0)) return s;
-        s.direction = to_light / s.distance;
+        // One division for the direction and the solid-angle pdf (a shadow ray per visible
+        // point waits on this chain).
+        const double inv_distance = 1.0 / s.distance;
+        s.direction = to_light * inv_distance;
         const double cos_light = -dot(s.direction, frame_.n);
-        if (cos_light > 0) s.radiance_over_pdf = color_ * (area_ * cos_light / d2);
+        if (cos_light > 0) s.radiance_over_pdf = color_ * (area_ * cos_light * (inv_distance * inv_distance));
         return s;
     }
     case Type::Sphere: {
