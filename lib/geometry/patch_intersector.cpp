@@ -79,6 +79,7 @@ public:
     // Each level of the search pushes two regions and pops one; a region shrinks to a width
     // of 1e-15 in a and b within about 100 levels.
     static constexpr int capacity = 160;
+    static constexpr int kWholePatch = 255; // a slot number no pool slot has
 
     bool empty() const { return size_ == 0; }
     Region &operator[](int slot) { return pool_[slot]; }
@@ -342,8 +343,9 @@ struct Solver {
 bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchRootQuery &query,
                      PatchRoot &root) {
     RegionStack stack;
-    const int first_slot = stack.acquire();
-    Region &first = stack[first_slot];
+    // The whole patch stays here, outside the stack's pool, for Newton (which evaluates the
+    // whole patch) to read after the search has split it; the stack names it kWholePatch.
+    Region first;
     const double ox = ray.org.x, oy = ray.org.y, oz = ray.org.z;
     for (int k = 0; k < 16; ++k) {
         const double qx = patch.x[k] - ox, qy = patch.y[k] - oy, qz = patch.z[k] - oz;
@@ -354,11 +356,8 @@ bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchR
     first.a0 = first.b0 = 0;
     first.a1 = first.b1 = 1;
     first.contraction_hint = 0;
-    const Projected top = first.cp;
-    stack.push(first_slot);
-    Region whole_patch;
-    whole_patch.a0 = whole_patch.b0 = 0;
-    whole_patch.a1 = whole_patch.b1 = 1;
+    const Projected &top = first.cp;
+    stack.push(RegionStack::kWholePatch);
     // The frame is a rotation: the largest projected coordinate is within sqrt(3) of the
     // largest coordinate of (control point - origin).
     const Bounds2 top_box = bounds_of(top);
@@ -393,9 +392,11 @@ bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchR
         struct Release {
             RegionStack &stack;
             int slot;
-            ~Release() { stack.release(slot); }
+            ~Release() {
+                if (slot != RegionStack::kWholePatch) stack.release(slot);
+            }
         } release{stack, slot};
-        const Region &r = stack[slot];
+        const Region &r = slot == RegionStack::kWholePatch ? first : stack[slot];
         const Bounds2 box = bounds_of(r.cp);
         if (box.xmin > noise || box.xmax < -noise || box.ymin > noise || box.ymax < -noise) continue;
         if (box.zmax < znear - noise || box.zmin > zbest + noise) continue;
@@ -428,7 +429,7 @@ bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchR
             double a = ca, b = cb, z = evaluate_z(top, ca, cb);
             double root_a, root_b, root_z;
             if (solver.newton(ca, cb, r, nullptr, root_a, root_b, root_z) ||
-                (solver.newton(ca, cb, whole_patch, nullptr, root_a, root_b, root_z) &&
+                (solver.newton(ca, cb, first, nullptr, root_a, root_b, root_z) &&
                  std::fabs(root_z - z) <= point_size)) {
                 a = root_a;
                 b = root_b;
