@@ -364,6 +364,33 @@ void rebuild_replaces_the_points(void **) {
     assert_close(grid.max_r2(), 4, 0);
 }
 
+// One grid rebuilt over more points, then fewer, then more again: its entry array is
+// replaced when too small and keeps stale entries past the last bucket otherwise, and every
+// build must still find exactly what brute force finds.
+void rebuilds_that_grow_and_shrink_match_brute_force(void **) {
+    test_rng rng{77};
+    HitPointGrid grid;
+    std::size_t found_pairs = 0;
+    for (const std::size_t count : {std::size_t(500), std::size_t(20000), std::size_t(300), std::size_t(40000)}) {
+        std::vector<HitPoint> points;
+        for (std::size_t i = 0; i < count; ++i) {
+            const double r = 0.002 + 0.02 * test_rng_uniform(&rng);
+            points.push_back(hit_point(random_in_box(rng, {-1, -1, -1}, {1, 1, 1}), r * r));
+        }
+        grid.build(points.data(), points.size());
+        for (int k = 0; k < 3000; ++k) {
+            // Photons near random hit points, so that most find some.
+            const Vec3 photon = points[std::size_t(test_rng_uniform(&rng) * count)].position +
+                                random_in_box(rng, {-0.01, -0.01, -0.01}, {0.01, 0.01, 0.01});
+            const Found expected = brute_force(points, photon);
+            assert_same(expected, search(grid, photon));
+            found_pairs += expected.size();
+        }
+    }
+    print_message("%zu (photon, hit point) pairs\n", found_pairs);
+    assert_true(found_pairs > 4000);
+}
+
 void non_finite_photons_find_nothing(void **) {
     const std::vector<HitPoint> points = {hit_point({0, 0, 0}, 1), hit_point({0.5, 0, 0}, 1)};
     const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
@@ -415,6 +442,7 @@ int main(void) {
         cmocka_unit_test(few_huge_radii_among_small_ones),
         cmocka_unit_test(absent_points_are_never_found),
         cmocka_unit_test(rebuild_replaces_the_points),
+        cmocka_unit_test(rebuilds_that_grow_and_shrink_match_brute_force),
         cmocka_unit_test(non_finite_photons_find_nothing),
         cmocka_unit_test(queries_do_not_allocate),
     };

@@ -180,16 +180,23 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count, const HitPoi
                                           " cell entries, more than 2^32");
     }
     bucket_start_[buckets] = static_cast<std::uint32_t>(total);
-    // Grown, never shrunk or cleared: resizing a cleared vector would first fill every entry
-    // with a default, on one thread (~50 MB per pass in the benchmark). Entries past `total`
-    // are stale and never read.
-    if (entries_.size() < total) entries_.resize(total);
+    // Kept between builds, replaced (not copied: the old entries are stale) when too small,
+    // and never filled with defaults: a vector's resize copied and zeroed ~50 MB on one
+    // thread, which made a render's first two grids 3-4x slower than the rest (the second
+    // lists the most entries: radii that photons reached shrank, the cells with them).
+    // Entries past `total` are stale and never read.
+    if (entries_capacity_ < total) {
+        entries_.reset();
+        entries_.reset(new Entry[total]);
+        entries_capacity_ = total;
+    }
     tbb::parallel_for(std::size_t(0), chunk_count, [&](std::size_t c) {
         Chunk &chunk = chunks_[c];
         for (BucketRun &run : chunk.runs) run.next = cursor[run.bucket].fetch_add(run.count, std::memory_order_relaxed);
         for (const std::uint64_t entry : chunk.entries) {
             const auto point = static_cast<std::uint32_t>(entry);
-            entries_[chunk.runs[entry >> 32].next++] = {points[point].position, points[point].r2, point};
+            const Vec3 &p = points[point].position;
+            entries_[chunk.runs[entry >> 32].next++] = {{p.x, p.y, p.z}, points[point].r2, point};
         }
     });
 }
@@ -229,7 +236,7 @@ void HitPointGrid::query(const Vec3 &photon, HitPointVisitor visit) const {
     const std::uint64_t b = bucket(c[0], c[1], c[2]);
     for (std::uint32_t e = bucket_start_[b], end = bucket_start_[b + 1]; e < end; ++e) {
         const Entry &entry = entries_[e];
-        const double dist2 = distance2(photon, entry.position);
+        const double dist2 = distance2(photon, Vec3{entry.position[0], entry.position[1], entry.position[2]});
         if (within_radius(dist2, entry.r2)) visit(entry.index, dist2);
     }
 }

@@ -77,12 +77,14 @@ private:
 
     std::size_t size_ = 0;
     // A point listed in a cell: its copy and its index in the caller's array.
+    // Plain doubles: `new Entry[n]` then leaves the memory as it is (a Vec3 would be zeroed).
     struct Entry {
-        Vec3 position;
+        double position[3];
         double r2;
         std::uint32_t index;
     };
-    std::vector<Entry> entries_;              // bucket by bucket (stale beyond the last bucket's end)
+    std::unique_ptr<Entry[]> entries_;        // bucket by bucket (stale beyond the last bucket's end)
+    std::size_t entries_capacity_ = 0;
     std::vector<std::uint32_t> bucket_start_; // bucket b lists entries_[start[b], start[b+1]); empty: no point
     std::uint64_t bucket_mask_ = 0;
     Vec3 origin_;                             // lower corner of the balls' bounds
