@@ -14,11 +14,13 @@
 
 namespace ppm {
 
-RayFrame RayFrame::from_ray(const Vec3 &org, const Vec3 &dir) {
+RayFrame RayFrame::from_ray(const Vec3 &org, const Vec3 &dir) { return from_ray(org, dir, length(dir)); }
+
+RayFrame RayFrame::from_ray(const Vec3 &org, const Vec3 &dir, double dir_length) {
     RayFrame f;
     f.org = org;
-    f.dir_length = length(dir);
-    f.axis = dir / f.dir_length;
+    f.dir_length = dir_length;
+    f.axis = dir * (1.0 / dir_length);
     orthonormal_basis(f.axis, f.e1, f.e2);
     return f;
 }

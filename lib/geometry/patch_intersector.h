@@ -21,6 +21,8 @@ struct RayFrame {
     double dir_length = 1; // |dir|: ray parameter t = distance / dir_length
 
     static RayFrame from_ray(const Vec3 &org, const Vec3 &dir);
+    // The same with |dir| known (a query has it, exact to rounding for unit directions).
+    static RayFrame from_ray(const Vec3 &org, const Vec3 &dir, double dir_length);
 };
 
 // Control points as a structure of arrays (index i * 4 + j as in BezierPatch): the layout

@@ -61,7 +61,7 @@ struct RayQuery {
     // The ray frame for patches, built on first use.
     const RayFrame &frame() {
         if (!frame_ready_) {
-            frame_ = RayFrame::from_ray(org, dir);
+            frame_ = RayFrame::from_ray(org, dir, dir_length);
             frame_ready_ = true;
         }
         return frame_;
