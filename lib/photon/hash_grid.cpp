@@ -186,7 +186,8 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count, const HitPoi
     // lists the most entries: radii that photons reached shrank, the cells with them).
     // Entries past `total` are stale and never read.
     if (entries_capacity_ < total) {
-        entries_.reset();
+        entries_.reset(); // first: the old and the new buffer are never held at once
+        entries_capacity_ = 0;
         entries_.reset(new Entry[total]);
         entries_capacity_ = total;
     }

@@ -81,7 +81,7 @@ void Renderer::trace_photon(std::uint64_t index, std::uint32_t pass, std::vector
     ray.tnear = 0;
     ray.tfar = INFINITY;
     SurfacePoint sp;
-    const ppm_hit *leaving = nullptr; // the light's surface is not a patch
+    const ppm_hit *leaving = nullptr; // photons start at a light, not at a hit
     for (int depth = 0; depth < settings_.max_depth; ++depth) {
         if (!render_scene_.intersect(ray, sp, leaving)) return;
         const Vec3 direction = Vec3::from(ray.dir);
