@@ -80,7 +80,8 @@ Rgb Renderer::direct_light(const VisiblePoint &vp, CounterRng &rng, const ppm_hi
         // Stop short of the light's own surface (area lights are geometry too).
         const double tfar = ls.distance * (1 - 1e-7) - 8 * vp.p_error;
         if (tfar <= 0) continue;
-        if (render_scene_.occluded(spawn_ray(vp.p, vp.normal, vp.p_error, ls.direction, tfar), at)) continue;
+        if (render_scene_.occluded(spawn_ray(vp.p, vp.normal, vp.p_error, ls.direction, tfar), at, light.geometry()))
+            continue;
         sum += vp.weight * f * ls.radiance_over_pdf * std::fabs(wi_local.z);
     }
     return sum;

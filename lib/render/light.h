@@ -13,6 +13,8 @@
 #include "math/vec3.h"
 #include "render/rgb.h"
 
+#include <cstdint>
+
 namespace ppm {
 
 struct EmittedPhoton {
@@ -52,6 +54,9 @@ public:
 
     // Distance photons start off an area light's surface (the scene's hit tolerance).
     void set_surface_offset(double offset) { surface_offset_ = offset; }
+    // The scene geometry an area light is (shadow rays towards it skip it), else PPM_INVALID_ID.
+    void set_geometry(uint32_t geom_id) { geom_id_ = geom_id; }
+    uint32_t geometry() const { return geom_id_; }
 
 private:
     Light() = default;
@@ -67,6 +72,7 @@ private:
     double radius_ = 0;
     double cos_cutoff_ = 0, cos_beam_ = 1, cutoff_ = 0, beam_ = 0;
     double surface_offset_ = 0;
+    uint32_t geom_id_ = 0xFFFFFFFFu; // PPM_INVALID_ID
 };
 
 } // namespace ppm

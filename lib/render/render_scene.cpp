@@ -15,12 +15,14 @@ Light area_light(const Geometry &g, uint32_t geom_id, double offset) {
         const QuadGeometry::Data &d = quad->data();
         Light light = Light::quad(d.origin, d.edge_u, d.edge_v, g.emission);
         light.set_surface_offset(offset);
+        light.set_geometry(geom_id);
         return light;
     }
     if (auto *sphere = dynamic_cast<const SphereGeometry *>(&g)) {
         const SphereGeometry::Data &d = sphere->data();
         Light light = Light::sphere(d.center, d.radius, g.emission);
         light.set_surface_offset(offset);
+        light.set_geometry(geom_id);
         return light;
     }
     invalid_argument("geometry " + std::to_string(geom_id) + " (" + g.kind() +

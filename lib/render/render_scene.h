@@ -47,8 +47,9 @@ public:
     // The same for up to Scene::max_stream rays from no surface (a camera's), traced as a
     // coherent stream: found[i] and out[i] as intersect(rays[i], out[i]) gives.
     void intersect_stream(const ppm_ray *rays, size_t count, SurfacePoint *out, bool *found) const;
-    bool occluded(const ppm_ray &ray, const ppm_hit *leaving = nullptr) const {
-        return scene_->occluded(ray, leaving);
+    // Whether anything blocks the ray; `toward`: the light's geometry it runs to (Scene::occluded).
+    bool occluded(const ppm_ray &ray, const ppm_hit *leaving = nullptr, uint32_t toward = PPM_INVALID_ID) const {
+        return scene_->occluded(ray, leaving, toward);
     }
 
 private:

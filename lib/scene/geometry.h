@@ -50,6 +50,11 @@ public:
     // the renderer pays only for textured surfaces.
     virtual void compute_uv(ppm_hit &hit) const { (void)hit; }
 
+    // Whether a ray spawned from one of its hits (spawn_ray) never meets it again: true for
+    // flat shapes, whose plane such a ray leaves. The scene then hides the geometry from that
+    // ray by an Embree mask, before any callback runs (Scene::ray_mask).
+    virtual bool planar() const { return false; }
+
     // Texture coordinates (s, t) of a hit: its (u, v) unless the kind maps them (mesh vertex
     // uvs, a patch set's per-patch rectangles).
     virtual void texture_coordinates(const ppm_hit &hit, double *s, double *t) const {

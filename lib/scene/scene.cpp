@@ -163,11 +163,16 @@ void Scene::commit() {
             const SphereGeometry::Data &sphere = static_cast<const SphereGeometry &>(*geometries_[id]).data();
             direct_spheres_.add(sphere.center, sphere.radius);
         }
+        assign_mask_bits();
         for (size_t id = 0; id < geometries_.size(); ++id) {
             if (std::find(direct_sphere_ids_.begin(), direct_sphere_ids_.end(), id) != direct_sphere_ids_.end()) continue;
             RTCGeometry g = geometries_[id]->create_embree(device, frame_);
             context_->check_embree("creating Embree geometry");
             if (!g) fail(PPM_ERROR_OUT_OF_MEMORY, "creating Embree geometry failed");
+            if (mask_bit_[id] != 0) {
+                rtcSetGeometryMask(g, mask_bit_[id]);
+                rtcCommitGeometry(g);
+            }
             rtcAttachGeometryByID(rtc, g, static_cast<unsigned>(id));
             rtcReleaseGeometry(g);
             context_->check_embree("rtcAttachGeometryByID");
@@ -186,14 +191,41 @@ void Scene::commit() {
     committed_ = true;
 }
 
+// Embree masks have 32 bits. The geometries that rays can skip get one each, area lights first
+// (every shadow ray runs to one), then the other planar ones (rays leaving them); the rest keep
+// Embree's full mask, so a ray's mask, all bits but those it skips, still reaches them. With
+// more such geometries than bits, the callbacks skip the others themselves (test_quad).
+void Scene::assign_mask_bits() {
+    mask_bit_.assign(geometries_.size(), 0);
+    leaving_mask_bit_.assign(geometries_.size(), 0);
+    unsigned next_bit = 0;
+    for (const bool lights : {true, false})
+        for (size_t id = 0; id < geometries_.size() && next_bit < 32; ++id) {
+            const Geometry &g = *geometries_[id];
+            const bool wanted = lights ? !g.emission.is_black() : g.planar();
+            if (wanted && mask_bit_[id] == 0) mask_bit_[id] = 1u << next_bit++;
+        }
+    for (size_t id = 0; id < geometries_.size(); ++id)
+        if (geometries_[id]->planar()) leaving_mask_bit_[id] = mask_bit_[id];
+}
+
+uint32_t Scene::ray_mask(const ppm_ray &ray, const ppm_hit *leaving, uint32_t toward) const {
+    uint32_t skip = 0;
+    // A ray starting behind its origin (tnear < 0) may meet the plane it left.
+    if (leaving && ray.tnear >= 0 && leaving->geom_id < leaving_mask_bit_.size())
+        skip |= leaving_mask_bit_[leaving->geom_id];
+    if (toward < mask_bit_.size()) skip |= mask_bit_[toward];
+    return ~skip;
+}
+
 void Scene::require_committed(const char *operation) const {
     if (!committed())
         fail(PPM_ERROR_INVALID_OPERATION,
              std::string(operation) + ": the scene is not committed (call ppm_scene_commit after changes)");
 }
 
-bool Scene::start_query(const ppm_ray &ray, bool any_hit, const ppm_hit *leaving, RayQuery &query,
-                        RTCRay &embree_ray) const {
+bool Scene::start_query(const ppm_ray &ray, bool any_hit, const ppm_hit *leaving, uint32_t toward,
+                        RayQuery &query, RTCRay &embree_ray) const {
     if (leaving) {
         query.origin.geom_id = leaving->geom_id;
         query.origin.prim_id = leaving->prim_id;
@@ -255,14 +287,14 @@ bool Scene::start_query(const ppm_ray &ray, bool any_hit, const ppm_hit *leaving
     embree_ray.tnear = 0.0f;
     embree_ray.tfar = query.embree_tfar(t1);
     embree_ray.time = 0.0f;
-    embree_ray.mask = 0xFFFFFFFFu; // masks are enabled in Debian's Embree build
+    embree_ray.mask = ray_mask(ray, leaving, toward); // masks are enabled in Debian's Embree build
     embree_ray.id = kSingleRayId;
     embree_ray.flags = 0;
     return true;
 }
 
 bool Scene::start_intersect(const ppm_ray &ray, const ppm_hit *leaving, RayQuery &query, RTCRayHit &rayhit) const {
-    if (!start_query(ray, false, leaving, query, rayhit.ray)) return false;
+    if (!start_query(ray, false, leaving, PPM_INVALID_ID, query, rayhit.ray)) return false;
     rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
@@ -334,10 +366,10 @@ void Scene::finish_intersect(const RayQuery &query, ppm_hit &hit, bool surface_u
     if (surface_uv) g.compute_uv(hit);
 }
 
-bool Scene::occluded(const ppm_ray &ray, const ppm_hit *leaving) const {
+bool Scene::occluded(const ppm_ray &ray, const ppm_hit *leaving, uint32_t toward) const {
     RayQuery query;
     RTCRay embree_ray;
-    if (!start_query(ray, true, leaving, query, embree_ray)) return false;
+    if (!start_query(ray, true, leaving, toward, query, embree_ray)) return false;
     if (direct_spheres_.occluded(query)) return true;
     if (bvh_empty_) return false;
     rtcOccluded1(rtc_scene_, &query.embree, &embree_ray);

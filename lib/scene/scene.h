@@ -50,7 +50,10 @@ public:
     // `leaving`, if given, is the hit the ray was spawned from (spawn_ray), which lets
     // patches skip the root the ray starts on; it may be `hit` itself.
     void intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv = true, const ppm_hit *leaving = nullptr) const;
-    bool occluded(const ppm_ray &ray, const ppm_hit *leaving = nullptr) const;
+    // `toward`, if given, is the area light the ray runs to (a shadow ray that stops short of
+    // a point sampled on it, which is the light's first point along the ray): the light
+    // cannot block it, and Embree is told to skip it.
+    bool occluded(const ppm_ray &ray, const ppm_hit *leaving = nullptr, uint32_t toward = PPM_INVALID_ID) const;
 
     // Closest hits of up to max_stream rays at once, traced by Embree as a coherent stream
     // (a camera's rays): hits[i] as intersect(rays[i], hits[i], surface_uv, leaving[i]) gives;
@@ -68,8 +71,13 @@ public:
 private:
     // Sets up the query and, unless the BVH is empty, Embree's float ray and context; false if
     // the ray misses the scene's box.
-    bool start_query(const ppm_ray &ray, bool any_hit, const ppm_hit *leaving, RayQuery &query,
+    bool start_query(const ppm_ray &ray, bool any_hit, const ppm_hit *leaving, uint32_t toward, RayQuery &query,
                      RTCRay &embree_ray) const;
+    // Embree's mask for a ray leaving `leaving` (may be null) towards light geometry `toward`
+    // (may be PPM_INVALID_ID): every geometry except those the ray cannot meet.
+    uint32_t ray_mask(const ppm_ray &ray, const ppm_hit *leaving, uint32_t toward) const;
+    // Gives up to 32 geometries a mask bit of their own (assign_mask_bits in scene.cpp).
+    void assign_mask_bits();
     // intersect() in two halves around Embree's traversal: the query (and the spheres kept
     // out of the BVH) before, the hit's description after.
     bool start_intersect(const ppm_ray &ray, const ppm_hit *leaving, RayQuery &query, RTCRayHit &rayhit) const;
@@ -90,6 +98,12 @@ private:
     std::vector<uint32_t> direct_sphere_ids_;
     SphereSet direct_spheres_; // the same spheres, by index in direct_sphere_ids_
     bool bvh_empty_ = false;   // every geometry is a direct sphere: Embree is not called
+
+    // Per geometry: its own Embree mask bit, or 0 if it has none (shares the full mask).
+    // Rays then skip, without any callback, the planar geometry they leave and the light they
+    // run to: the two quads every shadow ray in a Cornell box reached (own wall, light).
+    std::vector<uint32_t> mask_bit_;
+    std::vector<uint32_t> leaving_mask_bit_; // the same for planar geometries, 0 for the rest
 
     RTCScene rtc_scene_ = nullptr;
     bool committed_ = false;
