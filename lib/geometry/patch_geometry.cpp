@@ -62,11 +62,13 @@ struct SubPatchPlace {
 // Cheap rejection before the patch math: Embree only tested a float box. Clip the ray to
 // the sub-patch's box in double and check that the clipped segment reaches the slab between
 // the sub-patch's bounding planes. Both are padded by the tolerance and rounding.
-bool segment_misses(const PatchGeometry::SubPatch &sub, const RayQuery &query) {
+bool segment_misses(const PatchGeometry::SubPatch &sub, RayQuery &query) {
     const Box3 box = box_of(sub);
-    const double size = box.diagonal();
-    const double pad = query.tolerance + 1e-12 * (size + max_abs_component(box.lower) +
+    // The sum of the box's extents bounds its diagonal (no square root needed for a pad).
+    const Vec3 extent = box.upper - box.lower;
+    const double pad = query.tolerance + 1e-12 * (extent.x + extent.y + extent.z + max_abs_component(box.lower) +
                                                   max_abs_component(box.upper));
+    const Vec3 &inv_dir = query.inv_dir();
     double t0 = query.tnear, t1 = query.hit.t;
     for (int axis = 0; axis < 3; ++axis) {
         const double o = query.org[axis], d = query.dir[axis];
@@ -75,7 +77,10 @@ bool segment_misses(const PatchGeometry::SubPatch &sub, const RayQuery &query) {
             if (o < lo || o > hi) return true;
             continue;
         }
-        double ta = (lo - o) / d, tb = (hi - o) / d;
+        // A reciprocal rounds t by an ulp more than a division: far below the pad. A tiny d
+        // gives an infinite reciprocal, and 0 * inf a NaN, which max/min below ignore (the
+        // axis then clips nothing).
+        double ta = (lo - o) * inv_dir[axis], tb = (hi - o) * inv_dir[axis];
         if (ta > tb) std::swap(ta, tb);
         t0 = std::max(t0, ta);
         t1 = std::min(t1, tb);

@@ -66,6 +66,15 @@ struct RayQuery {
         }
         return frame_;
     }
+    // 1 / dir per axis (infinite for a zero component), for clipping to boxes: three
+    // divisions per ray instead of six per box. Built on first use.
+    const Vec3 &inv_dir() {
+        if (!inv_dir_ready_) {
+            inv_dir_ = {1.0 / dir.x, 1.0 / dir.y, 1.0 / dir.z};
+            inv_dir_ready_ = true;
+        }
+        return inv_dir_;
+    }
 
     // The query of the Embree ray with this id that a callback got `context` for.
     static RayQuery &of(RTCIntersectContext *context, unsigned ray_id);
@@ -86,7 +95,8 @@ struct RayQuery {
 
 private:
     RayFrame frame_;
-    bool frame_ready_ = false;
+    Vec3 inv_dir_;
+    bool frame_ready_ = false, inv_dir_ready_ = false;
 };
 
 // Embree ray ids. A single ray's query is its own context (RayQuery::embree) and its ray has
