@@ -43,18 +43,25 @@ Domain domain_of(int row, int column, int per_edge) {
             row + 1 == per_edge ? 1.0 : (row + 1) * step};
 }
 
-// Sub-patch `prim`: its patch, row and column there, and its domain in the patch.
+// Sub-patch `prim`: its patch, row and column there, and its domain in the patch. Found from
+// tables and one multiplication: Embree asks for every sub-patch box a ray reaches, and three
+// divisions (two integer, one floating) were a fifth of this test's time.
 struct SubPatchPlace {
     unsigned patch = 0;
     int row = 0, column = 0;
     Domain domain{};
-    static SubPatchPlace of(unsigned prim, int per_edge) {
+    static SubPatchPlace of(unsigned prim, const PatchGeometry::Data &data) {
+        const PatchGeometry::Data::Places &table = data.places;
         SubPatchPlace p;
-        const unsigned per_patch = unsigned(per_edge * per_edge), within = prim % per_patch;
-        p.patch = prim / per_patch;
-        p.row = int(within) / per_edge;
-        p.column = int(within) % per_edge;
-        p.domain = domain_of(p.row, p.column, per_edge);
+        // prim / per_patch by a rounded reciprocal, corrected where it lands next to an integer.
+        unsigned patch = static_cast<unsigned>(double(prim) * table.inv_per_patch);
+        if (patch * table.per_patch > prim) --patch;
+        else if ((patch + 1) * table.per_patch <= prim) ++patch;
+        const unsigned within = prim - patch * table.per_patch;
+        p.patch = patch;
+        p.row = table.row[within];
+        p.column = table.column[within];
+        p.domain = {table.cuts[p.column], table.cuts[p.column + 1], table.cuts[p.row], table.cuts[p.row + 1]};
         return p;
     }
 };
@@ -114,11 +121,11 @@ bool test_sub_patch(const PatchGeometry::Data &data, unsigned prim, RayQuery &qu
     SubPatchPlace at;
     const bool leaves_this_geometry = query.origin.geom_id == query.tested_geom_id;
     if (leaves_this_geometry) {
-        at = SubPatchPlace::of(prim, data.per_edge);
+        at = SubPatchPlace::of(prim, data);
         if (leaves_own_sub_patch(data, sub, at.patch, at.domain, query)) return false;
     }
     if (segment_misses(sub, query)) return false;
-    if (!leaves_this_geometry) at = SubPatchPlace::of(prim, data.per_edge);
+    if (!leaves_this_geometry) at = SubPatchPlace::of(prim, data);
     const unsigned patch_index = at.patch;
     const Domain &d = at.domain;
     ControlGrid grid;
@@ -226,6 +233,19 @@ void PatchGeometry::split_patches(int per_edge) {
     data_.patches = &world_patches();
     data_.magnitudes = &magnitude_;
     data_.per_edge = per_edge;
+    Data::Places &places = data_.places;
+    places.per_patch = unsigned(per_edge * per_edge);
+    places.inv_per_patch = 1.0 / places.per_patch;
+    places.row.clear();
+    places.column.clear();
+    for (int row = 0; row < per_edge; ++row)
+        for (int column = 0; column < per_edge; ++column) {
+            places.row.push_back(static_cast<uint8_t>(row));
+            places.column.push_back(static_cast<uint8_t>(column));
+        }
+    places.cuts.clear();
+    for (int k = 0; k < per_edge; ++k) places.cuts.push_back(domain_of(k, k, per_edge).u0);
+    places.cuts.push_back(1.0);
 }
 
 RTCGeometry PatchGeometry::create_embree(RTCDevice device, const EmbreeFrame &frame) {
