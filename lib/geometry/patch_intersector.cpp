@@ -132,7 +132,8 @@ struct Jet {
     double x, y, xa, xb, ya, yb;
 };
 
-Jet evaluate_jet(const Projected &p, double a, double b) {
+// Inlined: returned through memory, its six values reached Newton a store-forwarding delay late.
+[[gnu::always_inline]] inline Jet evaluate_jet(const Projected &p, double a, double b) {
     double ba[4], bb[4], da[4], db[4];
     bernstein3(a, ba);
     bernstein3(b, bb);
