@@ -65,32 +65,43 @@ VisiblePoint Renderer::make_visible_point(const SurfacePoint &sp, const Vec3 &ra
     return vp;
 }
 
-// One sample on every light, with a shadow ray each. `at`: the visible point's hit, if kept
-// (the shadow rays leave it: Scene::occluded).
-Rgb Renderer::direct_light(const VisiblePoint &vp, CounterRng &rng, const ppm_hit *at) const {
-    Rgb sum;
-    if (!settings_.direct_lighting) return sum;
+// One sample on every light, with a shadow ray each, for `count` (at most kPathGroup) visible
+// points, added to direct[k]; invalid points get nothing. at[k]: point k's hit, if kept (the
+// shadow rays leave it: Scene::occluded). Light by light, every point's sample is drawn before
+// any shadow ray is traced: a sample is a chain of a square root and a division, and chains
+// of different points overlap where one point's chain waited for the last (~4 % of the eye
+// pass). Each point draws its numbers in the same order as alone (lights in turn).
+void Renderer::add_direct_light(const VisiblePoint *vps, const ppm_hit *const *at, CounterRng *rngs,
+                                std::uint32_t count, Rgb *direct) const {
+    if (!settings_.direct_lighting) return;
     for (const Light &light : render_scene_.lights()) {
-        const double u1 = rng.uniform(), u2 = rng.uniform();
-        const DirectLightSample ls = light.sample_direct(vp.p, u1, u2);
-        if (ls.radiance_over_pdf.is_black()) continue;
-        const Vec3 wi_local = vp.frame.to_local(ls.direction);
-        const Rgb f = vp.bsdf.eval(vp.wo_local, wi_local);
-        if (f.is_black()) continue;
-        // Stop short of the light's own surface (area lights are geometry too).
-        const double tfar = ls.distance * (1 - 1e-7) - 8 * vp.p_error;
-        if (tfar <= 0) continue;
-        if (render_scene_.occluded(spawn_ray(vp.p, vp.normal, vp.p_error, ls.direction, tfar), at, light.geometry()))
-            continue;
-        sum += vp.weight * f * ls.radiance_over_pdf * std::fabs(wi_local.z);
+        ppm_ray shadow_rays[kPathGroup];
+        Rgb contributions[kPathGroup];
+        for (std::uint32_t k = 0; k < count; ++k) {
+            const VisiblePoint &vp = vps[k];
+            if (!vp.valid) continue;
+            const double u1 = rngs[k].uniform(), u2 = rngs[k].uniform();
+            const DirectLightSample ls = light.sample_direct(vp.p, u1, u2);
+            if (ls.radiance_over_pdf.is_black()) continue;
+            const Vec3 wi_local = vp.frame.to_local(ls.direction);
+            const Rgb f = vp.bsdf.eval(vp.wo_local, wi_local);
+            if (f.is_black()) continue;
+            // Stop short of the light's own surface (area lights are geometry too).
+            const double tfar = ls.distance * (1 - 1e-7) - 8 * vp.p_error;
+            if (tfar <= 0) continue;
+            shadow_rays[k] = spawn_ray(vp.p, vp.normal, vp.p_error, ls.direction, tfar);
+            contributions[k] = vp.weight * f * ls.radiance_over_pdf * std::fabs(wi_local.z);
+        }
+        for (std::uint32_t k = 0; k < count; ++k)
+            if (!contributions[k].is_black() && !render_scene_.occluded(shadow_rays[k], at[k], light.geometry()))
+                direct[k] += contributions[k];
     }
-    return sum;
 }
 
 void Renderer::trace_sppm_paths(std::uint32_t first, std::uint32_t count, std::uint32_t pass) {
     CounterRng rngs[kPathGroup];
     ppm_ray rays[kPathGroup];
-    SurfacePoint first_hits[kPathGroup];
+    SurfacePoint hits[kPathGroup];
     bool found[kPathGroup];
     count = std::min(count, kPathGroup);
     for (std::uint32_t k = 0; k < count; ++k) {
@@ -100,12 +111,22 @@ void Renderer::trace_sppm_paths(std::uint32_t first, std::uint32_t count, std::u
         rngs[k] = CounterRng(settings_.seed, kCameraStream, pass, first + k);
         rays[k] = camera_ray(camera_, first + k, rngs[k]);
     }
-    render_scene_.intersect_stream(rays, count, first_hits, found);
-    for (std::uint32_t k = 0; k < count; ++k) finish_sppm_path(first + k, rngs[k], rays[k], first_hits[k], found[k]);
+    render_scene_.intersect_stream(rays, count, hits, found);
+    VisiblePoint vps[kPathGroup];
+    Rgb direct[kPathGroup];
+    const ppm_hit *at[kPathGroup];
+    for (std::uint32_t k = 0; k < count; ++k) {
+        direct[k] = follow_sppm_path(rngs[k], rays[k], hits[k], found[k], vps[k]);
+        at[k] = &hits[k].hit; // the path ended at its visible point's hit
+    }
+    add_direct_light(vps, at, rngs, count, direct);
+    for (std::uint32_t k = 0; k < count; ++k) {
+        pass_direct_[first + k] = direct[k];
+        store_hit_point(first + k, vps[k]);
+    }
 }
 
-void Renderer::finish_sppm_path(std::uint32_t pixel, CounterRng &rng, ppm_ray ray, SurfacePoint &sp, bool found) {
-    VisiblePoint vp;
+Rgb Renderer::follow_sppm_path(CounterRng &rng, ppm_ray ray, SurfacePoint &sp, bool found, VisiblePoint &vp) const {
     Rgb weight(1.0), direct;
     double length = 0;
     for (int depth = 0; found; ++depth) {
@@ -128,9 +149,7 @@ void Renderer::finish_sppm_path(std::uint32_t pixel, CounterRng &rng, ppm_ray ra
         ray = spawn_ray(sp.hit, sp.frame.to_world(s.wi));
         found = render_scene_.intersect(ray, sp, &sp.hit); // leaving sp.hit
     }
-    if (vp.valid) direct += direct_light(vp, rng, &sp.hit); // the path ended at vp's hit
-    pass_direct_[pixel] = direct;
-    store_hit_point(pixel, vp);
+    return direct;
 }
 
 // The visible points of one pixel's path in PPM mode, splitting at glass (both branches,
@@ -284,8 +303,10 @@ void Renderer::direct_pass(std::uint32_t pass) {
             if (cancelled()) return;
             for (std::size_t slot = range.begin(); slot < range.end(); ++slot) {
                 CounterRng rng(settings_.seed, kDirectStream, pass, slot);
-                const VisiblePoint &vp = visible_[slot];
-                pass_direct_[slot] = fixed_emitted_[slot] + (vp.valid ? direct_light(vp, rng, nullptr) : Rgb());
+                const ppm_hit *no_hit = nullptr;
+                Rgb direct = fixed_emitted_[slot];
+                add_direct_light(&visible_[slot], &no_hit, &rng, 1, &direct);
+                pass_direct_[slot] = direct;
             }
         });
     });

@@ -133,13 +133,17 @@ private:
 
     // Camera paths (eye_pass.cpp).
     // SPPM: the paths of `count` (at most Scene::max_stream) pixels from `first` on, their
-    // camera rays traced together; each path goes on alone from its camera ray's hit.
+    // camera rays traced together; each path goes on alone from its camera ray's hit to its
+    // visible point, then the group's direct light is estimated together.
     void trace_sppm_paths(std::uint32_t first, std::uint32_t count, std::uint32_t pass);
-    void finish_sppm_path(std::uint32_t pixel, CounterRng &rng, ppm_ray ray, SurfacePoint &sp, bool found);
+    // From the camera ray's hit (sp, if found) through mirrors and glass to the visible point
+    // (vp, left invalid if none); returns the emission seen on the way. sp ends as vp's hit.
+    Rgb follow_sppm_path(CounterRng &rng, ppm_ray ray, SurfacePoint &sp, bool found, VisiblePoint &vp) const;
     template <class Emit>
     void trace_split_path(const ppm_ray &ray, const ppm_hit *leaving, Rgb weight, int depth, double length,
                           int &budget, std::uint32_t pixel, Emit &&emit);
-    Rgb direct_light(const VisiblePoint &vp, CounterRng &rng, const ppm_hit *at) const;
+    void add_direct_light(const VisiblePoint *vps, const ppm_hit *const *at, CounterRng *rngs, std::uint32_t count,
+                          Rgb *direct) const;
     VisiblePoint make_visible_point(const SurfacePoint &sp, const Vec3 &ray_dir, const Rgb &weight,
                                     double path_length) const;
     double footprint_r2(double path_length) const;
