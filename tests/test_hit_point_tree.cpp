@@ -143,6 +143,29 @@ void points_on_surfaces_match_brute_force(void **) {
     assert_true(pairs > 3000);
 }
 
+// Points on the floor and ceiling of a box (as in a Cornell box), one radius each time: the
+// box's faces lie in the middle of grid cells, so a ball on them is listed in two cells along
+// z only if it is wider than half a cell, never because the face fell on a cell face. With
+// cells 12 radii wide, a ball overlaps (1 + 2/12)^2 = 1.36 cells on average in the plane; the
+// grid used to list twice as many entries for one radius in a few (the ceiling's balls all
+// straddling a cell face). Queries stay exact.
+void walls_are_listed_once_across(void **) {
+    test_rng rng{14};
+    for (int k = 0; k < 24; ++k) {
+        const double r = 0.004 + 0.0005 * k;
+        std::vector<HitPoint> points;
+        for (int i = 0; i < 4000; ++i)
+            points.push_back(hit_point({test_rng_uniform(&rng), test_rng_uniform(&rng), i % 2 == 0 ? 0.0 : 1.0}, r * r));
+        HitPointGrid grid;
+        grid.build(points.data(), points.size());
+        const double per_point = double(grid.cell_entries()) / points.size();
+        assert_true(per_point > 1.2 && per_point < 1.5);
+        std::vector<Vec3> photons;
+        for (int i = 0; i < 200; ++i) photons.push_back(points[i].position + Vec3{0.5 * r, -0.3 * r, 0.2 * r});
+        assert_true(check_against_brute_force(points, photons) >= 200);
+    }
+}
+
 // A photon at exactly a hit point's radius counts; one ulp inside the radius it does not. The
 // largest radius is among the exact ones, which is where nanoflann's strict "dist < radius"
 // would lose it.
@@ -433,6 +456,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(random_points_with_random_radii_match_brute_force),
         cmocka_unit_test(points_on_surfaces_match_brute_force),
+        cmocka_unit_test(walls_are_listed_once_across),
         cmocka_unit_test(photons_exactly_at_the_radius_count),
         cmocka_unit_test(photons_exactly_at_the_radius_far_from_the_origin),
         cmocka_unit_test(empty_structures_find_nothing),

@@ -7,7 +7,8 @@
 // point): a KD-tree searches the ball of the LARGEST radius around every photon, which, with
 // radii that differ across the image, reads many points no ball reaches.
 //
-// Cells are 12 mean radii wide (hash_grid.cpp says why), so a typical hit point is listed in
+// Cells are 12 mean radii wide (hash_grid.cpp says why; a little more along an axis, so that
+// the faces of the hit points' box, where walls are, lie mid-cell), so a typical point is listed in
 // 1 to 8 cells (fewer than 2 on average in the benchmark), and a ball spans at most 5 per axis.
 // Cells are hashed into a power-of-two table; each bucket is a run of entries holding the
 // point's index and a copy of its position and radius, so a photon tests the candidates of
@@ -88,7 +89,7 @@ private:
     std::vector<std::uint32_t> bucket_start_; // bucket b lists entries_[start[b], start[b+1]); empty: no point
     std::uint64_t bucket_mask_ = 0;
     Vec3 origin_;                             // lower corner of the balls' bounds
-    double inv_cell_ = 0;
+    double inv_cell_[3] = {0, 0, 0};          // 1 / cell width per axis
     std::int64_t cells_[3] = {0, 0, 0};       // cells per axis
     double max_r2_ = 0;
     double pad_ = 0;                          // added to every radius against rounding
