@@ -135,7 +135,8 @@ private:
     // SPPM: the paths of `count` (at most Scene::max_stream) pixels from `first` on, their
     // camera rays traced together; each path goes on alone from its camera ray's hit to its
     // visible point, then the group's direct light is estimated together.
-    void trace_sppm_paths(std::uint32_t first, std::uint32_t count, std::uint32_t pass);
+    struct PathGroup; // a group's rays, hits and visible points (eye_pass.cpp)
+    void trace_sppm_paths(std::uint32_t first, std::uint32_t count, std::uint32_t pass, PathGroup &group);
     // From the camera ray's hit (sp, if found) through mirrors and glass to the visible point
     // (vp, left invalid if none); returns the emission seen on the way. sp ends as vp's hit.
     Rgb follow_sppm_path(CounterRng &rng, ppm_ray ray, SurfacePoint &sp, bool found, VisiblePoint &vp) const;
