@@ -49,6 +49,8 @@ Box3 QuadGeometry::prepare(const Affine &transform) {
     for (const Vec3 &corner : {q.origin, q.origin + q.edge_u, q.origin + q.edge_v,
                                q.origin + q.edge_u + q.edge_v})
         q.box.extend(corner);
+    q.unit_normal = normalize(q.normal);
+    q.rounding = 32 * DBL_EPSILON * std::max(max_abs_component(q.box.lower), max_abs_component(q.box.upper));
     return q.box;
 }
 
@@ -59,12 +61,10 @@ RTCGeometry QuadGeometry::create_embree(RTCDevice device, const EmbreeFrame &fra
 
 void QuadGeometry::describe_hit(const RayQuery &query, double tolerance, ppm_hit &hit) const {
     const Vec3 p = data_.origin + data_.edge_u * query.hit.u + data_.edge_v * query.hit.v;
-    const Vec3 n = normalize(data_.normal);
     p.store(hit.p);
-    n.store(hit.ng);
-    n.store(hit.ns);
-    hit.p_error = tolerance + 32 * DBL_EPSILON * std::max(max_abs_component(data_.box.lower),
-                                                           max_abs_component(data_.box.upper));
+    data_.unit_normal.store(hit.ng);
+    data_.unit_normal.store(hit.ns);
+    hit.p_error = tolerance + data_.rounding;
 }
 
 } // namespace ppm

@@ -20,6 +20,9 @@ public:
         Vec3 origin, edge_u, edge_v, normal; // normal = edge_u x edge_v, not normalised
         double uu, uv, vv, det;              // Gram matrix of the edges and its determinant
         Box3 box;
+        // What every hit needs, made once: the unit normal and the rounding part of p_error.
+        Vec3 unit_normal;
+        double rounding = 0;
         EmbreeFrame frame;
     };
 
