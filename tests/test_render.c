@@ -392,6 +392,11 @@ static void settings_and_argument_errors(void **state) {
     assert_ppm_ok(ppm_render_pass(r));
     assert_ppm_error(ppm_renderer_set_string(r, "mode", "ppm"), PPM_ERROR_INVALID_OPERATION, "first pass");
     assert_ppm_ok(ppm_renderer_set_double(r, "alpha", 0.5)); /* may change between passes */
+    double eye_seconds = -1, build_seconds = -1, photon_seconds = -1;
+    assert_ppm_ok(ppm_renderer_get_double(r, "last_eye_pass_seconds", &eye_seconds));
+    assert_ppm_ok(ppm_renderer_get_double(r, "last_search_build_seconds", &build_seconds));
+    assert_ppm_ok(ppm_renderer_get_double(r, "last_photon_pass_seconds", &photon_seconds));
+    assert_true(build_seconds >= 0 && build_seconds <= eye_seconds && photon_seconds >= 0);
     float small[10];
     assert_ppm_error(ppm_renderer_get_layer(r, "radiance", small, 10), PPM_ERROR_INVALID_ARGUMENT, "96 floats");
     assert_ppm_error(ppm_renderer_get_layer(r, "depth", small, 10), PPM_ERROR_INVALID_ARGUMENT, "unknown image layer");

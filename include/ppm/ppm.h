@@ -440,7 +440,8 @@ PPM_API void ppm_renderer_release(ppm_renderer renderer);
  * the initial radius settings are fixed after the first pass (INVALID_OPERATION); unknown keys, wrong types and
  * values out of range are INVALID_ARGUMENT. Read-only integers for get_int: "passes",
  * "photons_emitted", "width", "height"; read-only doubles for get_double:
- * "last_eye_pass_seconds", "last_photon_pass_seconds" (wall clock). */
+ * "last_eye_pass_seconds", "last_photon_pass_seconds" (wall clock), and
+ * "last_search_build_seconds", the part of the eye pass spent building the hit point search. */
 PPM_API ppm_status ppm_renderer_set_int(ppm_renderer renderer, const char *key, int64_t value);
 PPM_API ppm_status ppm_renderer_set_double(ppm_renderer renderer, const char *key, double value);
 PPM_API ppm_status ppm_renderer_set_string(ppm_renderer renderer, const char *key, const char *value);

@@ -203,6 +203,7 @@ ppm_status ppm_renderer_get_double(ppm_renderer renderer, const char *key, doubl
         const std::string k = key;
         if (k == "last_eye_pass_seconds") *out_value = r.last_eye_seconds();
         else if (k == "last_photon_pass_seconds") *out_value = r.last_photon_seconds();
+        else if (k == "last_search_build_seconds") *out_value = r.last_search_build_seconds();
         else *out_value = r.settings().get_double(k);
     });
 }

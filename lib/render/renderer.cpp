@@ -54,7 +54,9 @@ void Renderer::render_pass() {
         if (ppm_mode && pass == 0) slot_pixel_.clear(); // the fixed points are redone next time
         check_cancel();
     }
+    const auto build_start = std::chrono::steady_clock::now();
     build_search(eye_bounds);
+    const double build_seconds = seconds_since(build_start);
     const double eye_seconds = seconds_since(eye_start);
 
     const auto photon_start = std::chrono::steady_clock::now();
@@ -66,6 +68,7 @@ void Renderer::render_pass() {
     }
     last_photon_seconds_ = seconds_since(photon_start);
     last_eye_seconds_ = eye_seconds;
+    last_search_build_seconds_ = build_seconds;
     commit_pass();
 }
 

@@ -100,6 +100,8 @@ public:
     std::uint64_t passes() const { return passes_.load(); }
     std::uint64_t photons_emitted() const { return photons_emitted_.load(); }
     double last_eye_seconds() const { return last_eye_seconds_; }
+    // The part of last_eye_seconds() spent building the hit point grid or tree.
+    double last_search_build_seconds() const { return last_search_build_seconds_; }
     double last_photon_seconds() const { return last_photon_seconds_; }
 
     // Per-pixel layers, row-major from the top-left pixel:
@@ -185,7 +187,7 @@ private:
 
     std::atomic<std::uint64_t> passes_{0};
     std::atomic<std::uint64_t> photons_emitted_{0};
-    double last_eye_seconds_ = 0, last_photon_seconds_ = 0;
+    double last_eye_seconds_ = 0, last_photon_seconds_ = 0, last_search_build_seconds_ = 0;
     std::atomic<bool> cancel_requested_{false};
     std::mutex pass_mutex_;           // one pass at a time
     mutable std::mutex stats_mutex_;  // readers against the end-of-pass update

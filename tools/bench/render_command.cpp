@@ -35,7 +35,8 @@ void print_usage(std::FILE *out) {
     std::fprintf(out,
                  "usage: ppm-bench render [options]\n"
                  "Times the renderer's passes: eye pass seconds, photon paths per second and peak\n"
-                 "memory, per scene, hit-point search and photons per pass.\n"
+                 "memory, per scene, hit-point search and photons per pass; build_s is the part of\n"
+                 "eye_s spent building the hit-point search. Figures are medians over the passes.\n"
                  "  --scenes LIST      smallppm,teapot-glass (default both)\n"
                  "  --search LIST      grid,kdtree (default both)\n"
                  "  --photons LIST     photons per pass, in increasing order to see whether memory\n"
@@ -122,8 +123,8 @@ int run_render_command(int argc, char **argv, int first) {
         check(ppm_context_set_int(context, "threads", o.threads), "ppm_context_set_int");
         std::printf("render benchmark: %d x %d, %d passes per configuration, threads %d (0 = all)\n", o.width,
                     o.height, o.passes, o.threads);
-        std::printf("%-13s %-7s %10s %10s %12s %14s %10s\n", "scene", "search", "photons", "eye_s",
-                    "photon_s", "Mpaths/s", "peak_MiB");
+        std::printf("%-13s %-7s %10s %10s %12s %14s %10s %10s\n", "scene", "search", "photons", "eye_s",
+                    "photon_s", "Mpaths/s", "peak_MiB", "build_s");
         for (const std::string &name : o.scenes) {
             BenchScene bs = build_bench_scene(context, name, o.teapot, o.width, o.height);
             std::vector<double> rates;
@@ -133,18 +134,20 @@ int run_render_command(int argc, char **argv, int first) {
                     check(ppm_renderer_create(bs.scene, &bs.camera, &r), "ppm_renderer_create");
                     check(ppm_renderer_set_string(r, "hit_point_search", search.c_str()), "hit_point_search");
                     check(ppm_renderer_set_int(r, "photons_per_pass", photons), "photons_per_pass");
-                    std::vector<double> eye, photon;
+                    std::vector<double> eye, photon, build;
                     for (int p = 0; p < o.passes; ++p) {
                         check(ppm_render_pass(r), "ppm_render_pass");
-                        double e = 0, ph = 0;
+                        double e = 0, ph = 0, b = 0;
                         check(ppm_renderer_get_double(r, "last_eye_pass_seconds", &e), "get");
+                        check(ppm_renderer_get_double(r, "last_search_build_seconds", &b), "get");
+                        build.push_back(b);
                         check(ppm_renderer_get_double(r, "last_photon_pass_seconds", &ph), "get");
                         eye.push_back(e);
                         photon.push_back(ph);
                     }
                     const double rate = photons / median(photon) / 1e6;
-                    std::printf("%-13s %-7s %10ld %10.3f %12.3f %14.3f %10.0f\n", name.c_str(), search.c_str(),
-                                photons, median(eye), median(photon), rate, peak_rss_mib());
+                    std::printf("%-13s %-7s %10ld %10.3f %12.3f %14.3f %10.0f %10.3f\n", name.c_str(), search.c_str(),
+                                photons, median(eye), median(photon), rate, peak_rss_mib(), median(build));
                     std::fflush(stdout);
                     if (photons == o.photon_counts.back()) rates.push_back(rate);
                     if (!o.image_dir.empty() && photons == o.photon_counts.back())

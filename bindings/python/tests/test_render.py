@@ -146,6 +146,7 @@ def test_progress_callback_can_stop(plane):
     def progress(index, stats):
         seen.append((index, stats["passes"], stats["photons_emitted"]))
         assert stats["elapsed"] >= 0 and "last_eye_pass_seconds" in stats
+        assert 0 <= stats["last_search_build_seconds"] <= stats["last_eye_pass_seconds"]
         return index < 2  # False after the third pass
 
     with ppm.Renderer(plane, camera(8), photons_per_pass=500) as r:
