@@ -155,7 +155,8 @@ void walls_are_listed_once_across(void **) {
         const double r = 0.004 + 0.0005 * k;
         std::vector<HitPoint> points;
         for (int i = 0; i < 4000; ++i)
-            points.push_back(hit_point({test_rng_uniform(&rng), test_rng_uniform(&rng), i % 2 == 0 ? 0.0 : 1.0}, r * r));
+            points.push_back(
+                hit_point({test_rng_uniform(&rng), test_rng_uniform(&rng), i % 2 == 0 ? 0.0 : 1.0}, r * r));
         HitPointGrid grid;
         grid.build(points.data(), points.size());
         const double per_point = double(grid.cell_entries()) / points.size();

@@ -126,9 +126,9 @@ void shadow_rays_skip_only_their_light(void **) {
         const double margin = 1e-6;
         const bool through_second = lx > margin && lx < 2 - margin && std::fabs(ly) < 2 - margin;
         const bool through_blocker = bx > -2 + margin && bx < -margin && by > margin && by < 2 - margin;
-        const bool near_edge = std::fabs(lx) < margin || std::fabs(lx - 2) < margin || std::fabs(std::fabs(ly) - 2) < margin ||
-                               std::fabs(bx + 2) < margin || std::fabs(bx) < margin || std::fabs(by) < margin ||
-                               std::fabs(by - 2) < margin;
+        const bool near_edge = std::fabs(lx) < margin || std::fabs(lx - 2) < margin ||
+                               std::fabs(std::fabs(ly) - 2) < margin || std::fabs(bx + 2) < margin ||
+                               std::fabs(bx) < margin || std::fabs(by) < margin || std::fabs(by - 2) < margin;
         if (near_edge) continue;
         const bool expected = through_second || through_blocker;
         assert_true(scene.occluded(ray, &start, s.light) == expected);

@@ -8,8 +8,9 @@
 // radii that differ across the image, reads many points no ball reaches.
 //
 // Cells are 12 mean radii wide (hash_grid.cpp says why; a little more along an axis, so that
-// the faces of the hit points' box, where walls are, lie mid-cell), so a typical point is listed in
-// 1 to 8 cells (fewer than 2 on average in the benchmark), and a ball spans at most 5 per axis.
+// the faces of the hit points' box, where walls are, lie mid-cell), so a typical point is
+// listed in 1 to 8 cells (fewer than 2 on average in the benchmark), and a ball spans at most
+// 5 per axis.
 // Cells are hashed into a power-of-two table; each bucket is a run of entries holding the
 // point's index and a copy of its position and radius, so a photon tests the candidates of
 // its bucket from one contiguous array (reading each point from the caller's array, in image

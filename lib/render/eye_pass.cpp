@@ -69,8 +69,9 @@ VisiblePoint Renderer::make_visible_point(const SurfacePoint &sp, const Vec3 &ra
 // points, added to direct[k]; invalid points get nothing. at[k]: point k's hit, if kept (the
 // shadow rays leave it: Scene::occluded). Light by light, every point's sample is drawn before
 // any shadow ray is traced: a sample is a chain of a square root and a division, and chains
-// of different points overlap where one point's chain waited for the last (~4 % of the eye
-// pass). Each point draws its numbers in the same order as alone (lights in turn).
+// of different points overlap where each point's chain used to wait for its own (the light
+// sampling had ~4 % of the eye pass's perf samples, mostly waiting). Each point draws its
+// numbers in the same order as alone (lights in turn).
 void Renderer::add_direct_light(const VisiblePoint *vps, const ppm_hit *const *at, CounterRng *rngs,
                                 std::uint32_t count, Rgb *direct) const {
     if (!settings_.direct_lighting) return;

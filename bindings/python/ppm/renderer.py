@@ -81,7 +81,8 @@ class Renderer(Handle):
     def get(self, key):
         """A setting or read-only value by name (int, float or str, as the C API has it):
         the settings above and ``passes``, ``photons_emitted``, ``width``, ``height``,
-        ``last_eye_pass_seconds``, ``last_photon_pass_seconds``, ``last_search_build_seconds``."""
+        ``last_eye_pass_seconds``, ``last_photon_pass_seconds``,
+        ``last_search_build_seconds``."""
         # The C API has one getter per type and no "type of key" query: try each in turn.
         getters = (self._core_object.get_int, self._core_object.get_double,
                    self._core_object.get_string)
@@ -125,7 +126,8 @@ class Renderer(Handle):
         ``progress(pass_index, stats)`` is called after each pass with the 0-based index
         of the pass within this call and a dict (``passes``, ``photons_emitted``,
         ``elapsed`` seconds since the call started, ``last_eye_pass_seconds`` and the
-        ``last_search_build_seconds`` within it, ``last_photon_pass_seconds``); returning ``False`` (not None) stops early.
+        ``last_search_build_seconds`` within it, ``last_photon_pass_seconds``); returning
+        ``False`` (not None) stops early.
         ``time_limit`` (seconds) stops after the pass that crosses it. A :meth:`cancel`
         from another thread stops too: the image is then that of the last whole pass.
         """
