@@ -36,12 +36,6 @@ Box3 box_of(const PatchGeometry::SubPatch &sub) {
 struct Domain {
     double u0, u1, v0, v1;
 };
-Domain domain_of(int row, int column, int per_edge) {
-    // The last boundary is exactly 1, not per_edge * step.
-    const double step = 1.0 / per_edge;
-    return {column * step, column + 1 == per_edge ? 1.0 : (column + 1) * step, row * step,
-            row + 1 == per_edge ? 1.0 : (row + 1) * step};
-}
 
 // Sub-patch `prim`: its patch, row and column there, and its domain in the patch. Found from
 // tables and one multiplication: Embree asks for every sub-patch box a ray reaches, and three
@@ -218,11 +212,15 @@ Box3 PatchGeometry::prepare(const Affine &transform) {
 }
 
 void PatchGeometry::split_patches(int per_edge) {
+    // The cuts of [0, 1], the last exactly 1 (not per_edge * step), and the interval matrices
+    // between them.
+    std::vector<double> &cuts = data_.places.cuts;
+    cuts.clear();
+    const double step = 1.0 / per_edge;
+    for (int k = 0; k < per_edge; ++k) cuts.push_back(k * step);
+    cuts.push_back(1.0);
     data_.intervals.clear();
-    for (int k = 0; k < per_edge; ++k) {
-        const Domain d = domain_of(k, k, per_edge);
-        data_.intervals.push_back(IntervalMatrix::of(d.u0, d.u1));
-    }
+    for (int k = 0; k < per_edge; ++k) data_.intervals.push_back(IntervalMatrix::of(cuts[k], cuts[k + 1]));
     data_.sub_patches.clear();
     data_.sub_patches.shrink_to_fit(); // a smaller presplit than last commit's frees memory
     data_.sub_patches.reserve(world_patches().size() * per_edge * per_edge);
@@ -243,9 +241,6 @@ void PatchGeometry::split_patches(int per_edge) {
             places.row.push_back(static_cast<uint8_t>(row));
             places.column.push_back(static_cast<uint8_t>(column));
         }
-    places.cuts.clear();
-    for (int k = 0; k < per_edge; ++k) places.cuts.push_back(domain_of(k, k, per_edge).u0);
-    places.cuts.push_back(1.0);
 }
 
 RTCGeometry PatchGeometry::create_embree(RTCDevice device, const EmbreeFrame &frame) {
