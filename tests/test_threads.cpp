@@ -8,8 +8,9 @@
 //  - cancel during a pass (SPPM and PPM, the first pass and a later one): the pass returns
 //    CANCELLED, the image and counters are those of the last completed pass, and the next
 //    passes give the images of a render that was never cancelled;
-//  - get_layer and save_checkpoint on other threads during passes: they always see the state
-//    after a completed pass, and a checkpoint saved during a pass resumes bit-exactly.
+//  - get_layer, save_checkpoint and the counters (passes, photons, pass times) on other
+//    threads during passes: they always see the state after a completed pass, and a
+//    checkpoint saved during a pass resumes bit-exactly.
 // Worker threads only record what they saw; the assertions run on the test's own thread.
 // The standard headers come first: cmocka defines macros (fail, ...) that clash with them.
 #include <atomic>
@@ -314,14 +315,26 @@ void readers_during_passes_see_completed_passes(void **state) {
         ppm_renderer r = make_renderer(f->scene, mode);
         std::vector<std::string> boundaries; // the checkpoint after 1, 2, ... passes
         std::atomic<bool> done{false};
-        std::atomic<int> reads{0}, unexpected_images{0}, failed_reads{0};
+        std::atomic<int> reads{0}, unexpected_images{0}, failed_reads{0}, unexpected_counters{0};
         std::thread reader([&] {
             Image image;
             do {
-                if (!read_image(r, image)) {
+                // The counters a progress display shows: each within what the render reaches.
+                int64_t passes = -1, emitted = -1;
+                double seconds[3] = {-1, -1, -1};
+                if (!read_image(r, image) || ppm_renderer_get_int(r, "passes", &passes) != PPM_OK ||
+                    ppm_renderer_get_int(r, "photons_emitted", &emitted) != PPM_OK ||
+                    ppm_renderer_get_double(r, "last_eye_pass_seconds", &seconds[0]) != PPM_OK ||
+                    ppm_renderer_get_double(r, "last_photon_pass_seconds", &seconds[1]) != PPM_OK ||
+                    ppm_renderer_get_double(r, "last_search_build_seconds", &seconds[2]) != PPM_OK) {
                     ++failed_reads;
                     continue;
                 }
+                if (passes < 0 || passes > kPasses || emitted < 0 || emitted > kPasses * kPhotons ||
+                    emitted % kPhotons != 0)
+                    ++unexpected_counters;
+                for (double s : seconds)
+                    if (!(s >= 0 && s < 1e6)) ++unexpected_counters;
                 bool known = false;
                 for (const Image &expected : reference) known = known || image == expected;
                 if (!known) ++unexpected_images;
@@ -350,6 +363,7 @@ void readers_during_passes_see_completed_passes(void **state) {
         saver.join();
         assert_int_equal(failed_reads.load(), 0);
         assert_int_equal(unexpected_images.load(), 0);
+        assert_int_equal(unexpected_counters.load(), 0);
         assert_true(reads.load() > 0);
         assert_int_equal(failed_saves.load(), 0);
         assert_true(image_of(r) == reference[kPasses]);
