@@ -1,6 +1,7 @@
 #include "core/error.h"
 
 #include <cstdio>
+#include <cstdlib>
 
 namespace ppm {
 
@@ -12,7 +13,10 @@ std::string out_of_memory_message(const std::string &what, std::uint64_t bytes) 
 
 std::string format_number(double value) {
     char text[32];
-    std::snprintf(text, sizeof text, "%.17g", value);
+    for (int digits = 15; digits <= 17; ++digits) {
+        std::snprintf(text, sizeof text, "%.*g", digits, value);
+        if (std::strtod(text, nullptr) == value || !(value == value)) break;
+    }
     return text;
 }
 
