@@ -236,15 +236,16 @@ void Renderer::init_pixel_slots() {
     // the flux accumulator's cache line.
     constexpr std::uint64_t slot_bytes = sizeof(std::uint32_t) + sizeof(PixelStatistics) + sizeof(HitPoint) +
                                          sizeof(GatherPoint) + sizeof(Rgb) + 64;
-    // Built aside and moved in, so that a failed allocation leaves the renderer as it was.
+    // Built aside and moved in, so that a failed allocation leaves the renderer as it was;
+    // the largest arrays first, so that a film too large fails before any memory is filled.
     allocate_or_fail(film_description(), pixels * slot_bytes, [&] {
-        std::vector<std::uint32_t> slot_pixel(pixels);
-        for (std::uint32_t p = 0; p < pixels; ++p) slot_pixel[p] = p;
+        auto flux = std::make_unique<FluxAccumulator>(pixels, flux_scale());
+        std::vector<GatherPoint> gather(pixels);
         std::vector<PixelStatistics> stats(pixels, PixelStatistics{});
         std::vector<HitPoint> hit_points(pixels, HitPoint{});
-        std::vector<GatherPoint> gather(pixels);
         std::vector<Rgb> pass_direct(pixels, Rgb());
-        auto flux = std::make_unique<FluxAccumulator>(pixels, flux_scale());
+        std::vector<std::uint32_t> slot_pixel(pixels);
+        for (std::uint32_t p = 0; p < pixels; ++p) slot_pixel[p] = p;
         visible_.clear();
         slot_pixel_ = std::move(slot_pixel);
         stats_ = std::move(stats);
