@@ -193,7 +193,8 @@ private:
 
     std::atomic<std::uint64_t> passes_{0};
     std::atomic<std::uint64_t> photons_emitted_{0};
-    double last_eye_seconds_ = 0, last_photon_seconds_ = 0, last_search_build_seconds_ = 0;
+    // Atomic like the counters above: a progress display may read them during a pass.
+    std::atomic<double> last_eye_seconds_{0}, last_photon_seconds_{0}, last_search_build_seconds_{0};
     std::atomic<bool> cancel_requested_{false};
     std::mutex pass_mutex_;           // one pass at a time
     mutable std::mutex stats_mutex_;  // readers against the end-of-pass update
