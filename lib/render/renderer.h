@@ -40,6 +40,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace ppm {
@@ -124,6 +125,8 @@ private:
     // cache); PPM's fixed points are stored and measured by build_search().
     std::optional<HitPointBounds> eye_pass(std::uint32_t pass);
     void init_pixel_slots(); // SPPM: one slot per pixel, statistics zero
+    void init_ppm_slots();   // PPM: the first eye pass's split paths, traced in parallel
+    std::string film_description() const; // "the film of W x H pixels", for messages
     double flux_scale() const; // for the FluxAccumulator
     void photon_pass(std::uint32_t pass);
     void direct_pass(std::uint32_t pass); // PPM: direct light again at the fixed points
