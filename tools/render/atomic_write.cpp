@@ -49,6 +49,13 @@ void write_bytes_atomically(const std::string &path, const void *data, std::size
     if (fsync(fd) != 0) close_and_give_up("cannot flush to disk");
     if (close(fd) != 0) give_up("write error", errno);
     if (std::rename(temp_name.c_str(), path.c_str()) != 0) give_up("cannot replace it", errno);
+    // The rename is durable once the folder's entry is on disk; best effort, as the file is
+    // already complete and in place.
+    const int folder_fd = open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY);
+    if (folder_fd >= 0) {
+        fsync(folder_fd);
+        close(folder_fd);
+    }
 }
 
 } // namespace ppm_render
