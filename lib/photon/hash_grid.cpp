@@ -133,10 +133,9 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count, const HitPoi
     const double width = std::max({kCellWidthInRadii * sum_r / samples, 2.0 * max_r / (kMaxAcross - 1) * (1 + 1e-6),
                                    extent * 0x1p-30, 0x1p-500});
     // Hit points crowd on walls, and the walls bounding a scene are the faces of the points'
-    // box. A face lying near a cell face put every ball on that wall into two cells (on the
-    // teapot benchmark 1.06 M entries in most passes, 1.5-1.75 M in a third of them). So each
-    // axis gets its own width, at least `width`, fitting a whole number of cells between the
-    // box's two faces, which then lie in the middle of cells.
+    // box. A face lying near a cell face would put every ball on that wall into two cells. So
+    // each axis gets its own width, at least `width`, fitting a whole number of cells between
+    // the box's two faces, which then lie in the middle of cells.
     for (int a = 0; a < 3; ++a) {
         const double span = bounds.box.upper[a] - bounds.box.lower[a];
         const double across = std::floor(span / width);
@@ -150,8 +149,7 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count, const HitPoi
 
     // A bucket per 4 points: cells 12 radii wide hold many points each (a radius spans a pixel
     // or more), so occupied cells stay well below the buckets even as radii shrink, while the
-    // build's counters, zeroing and serial prefix sum are a quarter of a bucket per point's
-    // (eye pass 0.30 -> 0.28 s on smallppm; a bucket per 16 points gained little more).
+    // build's counters, zeroing and serial prefix sum cost a quarter of a bucket per point's.
     std::uint64_t buckets = 1;
     while (buckets < count / 4 || buckets < 64) buckets <<= 1;
     bucket_mask_ = buckets - 1;
