@@ -1,6 +1,6 @@
 // Accuracy of libppm's ray / teapot intersection against an independent reference.
 //
-// The reference (tests/support/reference_intersector.*) finds ALL roots of a ray with the 32
+// The reference (tools/reference/reference_intersector.*) finds ALL roots of a ray with the 32
 // bicubic patches by subdividing each patch with De Casteljau in world space, in long double,
 // culling sub-patches whose control-point hull misses the ray, down to leaves of ~1e-6 of the
 // model diagonal, where a long-double Newton iteration on (u, v, t) solves

@@ -10,6 +10,16 @@ namespace ppm {
 
 namespace {
 
+// A derivative shorter than this share of the patch's size is rounding noise of a collapsed
+// edge (evaluation rounds at ~1e-15 of it), not a tangent: far above the noise, far below
+// the tangents of any patch of sensible proportions.
+constexpr double kVanishingShare = 1e-10;
+// Where both derivatives and the twist vanish, the normal is taken this share of the way
+// towards the patch centre (times the attempt): enough to move off the degenerate point in
+// double, little enough to be its limit. Polynomial data need at most three such steps.
+constexpr double kCentreStep = 1e-7;
+constexpr int kNormalAttempts = 4;
+
 inline Vec3 tensor_sum(const BezierPatch &patch, const double bu[4], const double bv[4]) {
     Vec3 sum;
     for (int i = 0; i < 4; ++i) {
@@ -77,11 +87,10 @@ Vec3 geometric_normal(const BezierPatch &patch, double u, double v, double scale
 Vec3 geometric_normal(const BezierPatch &patch, double u, double v, double scale,
                       const SurfaceDerivatives &at_uv) {
     if (!(scale > 0)) return {};
-    // A derivative this small is rounding noise of a collapsed edge, not a tangent.
-    const double vanish = 1e-10 * scale;
+    const double vanish = kVanishingShare * scale;
     // Walk towards the patch centre if the point itself is degenerate in both directions
-    // (both derivatives and the twist vanish); three tiny steps suffice for polynomial data.
-    for (int attempt = 0; attempt < 4; ++attempt) {
+    // (both derivatives and the twist vanish).
+    for (int attempt = 0; attempt < kNormalAttempts; ++attempt) {
         const SurfaceDerivatives d = attempt == 0 ? at_uv : evaluate_derivatives(patch, u, v);
         Vec3 tu = d.du, tv = d.dv;
         // Near a collapsed edge v = e, dS/du ~ (v - e) * d2S/dudv: the limit direction of
@@ -91,7 +100,7 @@ Vec3 geometric_normal(const BezierPatch &patch, double u, double v, double scale
         const Vec3 n = cross(tu, tv);
         const double len = length(n);
         if (len > vanish * vanish && std::isfinite(len)) return n / len;
-        const double step = 1e-7 * (attempt + 1);
+        const double step = kCentreStep * (attempt + 1);
         u += (0.5 - u) * step;
         v += (0.5 - v) * step;
     }
@@ -139,7 +148,7 @@ void sub_patch_soa(const BezierPatch &patch, const IntervalMatrix &along_u,
     // Rows first: r[i][j] = sum_l u.w[j][l] P[i][l]; then columns: sum_k v.w[i][k] r[k][j].
 #if defined(__AVX2__) && defined(__FMA__)
     // A row of r or of the result is one register over j; this runs for every ray that gets
-    // past a sub-patch's culling, and the scalar loops took 2.5x the instructions.
+    // past a sub-patch's culling, and the scalar loops take over twice the instructions.
     const __m256d w0 = _mm256_loadu_pd(along_u.w[0]), w1 = _mm256_loadu_pd(along_u.w[1]);
     const __m256d w2 = _mm256_loadu_pd(along_u.w[2]), w3 = _mm256_loadu_pd(along_u.w[3]);
     const __m256d t0 = _mm256_unpacklo_pd(w0, w1), t1 = _mm256_unpackhi_pd(w0, w1);

@@ -15,9 +15,15 @@ namespace {
 // Sub-patches per patch edge come from the scene setting "patch_presplit" (EmbreeFrame).
 // Smaller sub-patches give Embree tighter boxes and leave the Krawczyk test less to prove,
 // more cost Embree callbacks and memory (52 bytes of culling data each plus Embree's ~90
-// bytes). On the teapot 12 (the default) was the fastest on camera rays and about as fast as
-// 4 on random ones; 3 keeps the whole structure 1000x smaller than a 1M-triangle mesh
-// (ppm-bench intersect, exact-presplit-N).
+// bytes). The default is chosen by `ppm-bench intersect` (methods exact-presplit-N; figures
+// in docs/bench/code-history.md).
+
+// A hit point is the patch evaluated at the hit's (u, v): Bernstein sums of 16 control
+// points, which round by a few ulps of their magnitude; this many covers them.
+constexpr double kHitPointUlps = 32;
+// The clipping below runs in double on coordinates of the float box: its relative rounding
+// is a few ulps, this pad covers it ten thousandfold.
+constexpr double kClipRounding = 1e-12;
 
 float round_down(double x) {
     const float f = static_cast<float>(x);
@@ -37,25 +43,20 @@ struct Domain {
     double u0, u1, v0, v1;
 };
 
-// Sub-patch `prim`: its patch, row and column there, and its domain in the patch. Found from
-// tables and one multiplication: Embree asks for every sub-patch box a ray reaches, and three
-// divisions (two integer, one floating) were a fifth of this test's time.
+// Sub-patch `prim`: its patch, row and column there (sub-patches are stored row by row,
+// per_edge x per_edge per patch), and its domain in the patch.
 struct SubPatchPlace {
     unsigned patch = 0;
     int row = 0, column = 0;
     Domain domain{};
     static SubPatchPlace of(unsigned prim, const PatchGeometry::Data &data) {
-        const PatchGeometry::Data::Places &table = data.places;
+        const unsigned per_edge = unsigned(data.per_edge), per_patch = per_edge * per_edge;
+        const unsigned within = prim % per_patch;
         SubPatchPlace p;
-        // prim / per_patch by a rounded reciprocal, corrected where it lands next to an integer.
-        unsigned patch = static_cast<unsigned>(double(prim) * table.inv_per_patch);
-        if (patch * table.per_patch > prim) --patch;
-        else if ((patch + 1) * table.per_patch <= prim) ++patch;
-        const unsigned within = prim - patch * table.per_patch;
-        p.patch = patch;
-        p.row = table.row[within];
-        p.column = table.column[within];
-        p.domain = {table.cuts[p.column], table.cuts[p.column + 1], table.cuts[p.row], table.cuts[p.row + 1]};
+        p.patch = prim / per_patch;
+        p.row = int(within / per_edge);
+        p.column = int(within % per_edge);
+        p.domain = {data.cuts[p.column], data.cuts[p.column + 1], data.cuts[p.row], data.cuts[p.row + 1]};
         return p;
     }
 };
@@ -67,7 +68,7 @@ bool segment_misses(const PatchGeometry::SubPatch &sub, RayQuery &query) {
     const Box3 box = box_of(sub);
     // The sum of the box's extents bounds its diagonal (no square root needed for a pad).
     const Vec3 extent = box.upper - box.lower;
-    const double pad = query.tolerance + 1e-12 * (extent.x + extent.y + extent.z + max_abs_component(box.lower) +
+    const double pad = query.tolerance + kClipRounding * (extent.x + extent.y + extent.z + max_abs_component(box.lower) +
                                                   max_abs_component(box.upper));
     const Vec3 &inv_dir = query.inv_dir();
     double t0 = query.tnear, t1 = query.hit.t;
@@ -98,20 +99,21 @@ Vec3 stored_normal(const PatchGeometry::SubPatch &sub) { return {sub.normal[0], 
 
 // Whether the ray leaves a point of this sub-patch (the caller said where it starts) and
 // cannot meet it again: chord_slope.h. The hit point the ray was spawned from is the
-// patch evaluated at the hit's (u, v), to rounding of 32 ulps of the patch's magnitude (as
-// PatchGeometry::describe_hit states); twice that is allowed for.
+// patch evaluated at the hit's (u, v), to rounding of kHitPointUlps of the patch's magnitude
+// (as PatchGeometry::describe_hit states); twice that is allowed for.
 bool leaves_own_sub_patch(const PatchGeometry::Data &data, const PatchGeometry::SubPatch &sub,
                           unsigned patch_index, const Domain &d, const RayQuery &query) {
     const RayOrigin &from = query.origin;
     if (from.prim_id != patch_index || !(query.tnear >= 0)) return false;
     if (!(from.u >= d.u0 && from.u <= d.u1 && from.v >= d.v0 && from.v <= d.v1)) return false;
-    const double offset_error = 64 * DBL_EPSILON * (*data.magnitudes)[patch_index];
+    const double offset_error = 2 * kHitPointUlps * DBL_EPSILON * (*data.magnitudes)[patch_index];
     return leaves_for_good(stored_normal(sub), sub.chord_slope, query.org - from.p, offset_error, query.dir);
 }
 
 bool test_sub_patch(const PatchGeometry::Data &data, unsigned prim, RayQuery &query) {
     const PatchGeometry::SubPatch &sub = data.sub_patches[prim];
-    // Where the sub-patch lies in its patch: integer divisions, left for the rays that need it.
+    // Where the sub-patch lies in its patch: rays leaving this geometry need it first, the
+    // others only once past the culling.
     SubPatchPlace at;
     const bool leaves_this_geometry = query.origin.geom_id == query.tested_geom_id;
     if (leaves_this_geometry) {
@@ -214,7 +216,7 @@ Box3 PatchGeometry::prepare(const Affine &transform) {
 void PatchGeometry::split_patches(int per_edge) {
     // The cuts of [0, 1], the last exactly 1 (not per_edge * step), and the interval matrices
     // between them.
-    std::vector<double> &cuts = data_.places.cuts;
+    std::vector<double> &cuts = data_.cuts;
     cuts.clear();
     const double step = 1.0 / per_edge;
     for (int k = 0; k < per_edge; ++k) cuts.push_back(k * step);
@@ -231,16 +233,6 @@ void PatchGeometry::split_patches(int per_edge) {
     data_.patches = &world_patches();
     data_.magnitudes = &magnitude_;
     data_.per_edge = per_edge;
-    Data::Places &places = data_.places;
-    places.per_patch = unsigned(per_edge * per_edge);
-    places.inv_per_patch = 1.0 / places.per_patch;
-    places.row.clear();
-    places.column.clear();
-    for (int row = 0; row < per_edge; ++row)
-        for (int column = 0; column < per_edge; ++column) {
-            places.row.push_back(static_cast<uint8_t>(row));
-            places.column.push_back(static_cast<uint8_t>(column));
-        }
 }
 
 RTCGeometry PatchGeometry::create_embree(RTCDevice device, const EmbreeFrame &frame) {
@@ -261,7 +253,7 @@ void PatchGeometry::describe_hit(const RayQuery &query, double tolerance, ppm_hi
     n.store(hit.ns);
     // Evaluation rounds at a few ulps of the control points' magnitude; (u, v) itself is
     // exact to the tolerance.
-    hit.p_error = tolerance + 32 * DBL_EPSILON * magnitude_[index];
+    hit.p_error = tolerance + kHitPointUlps * DBL_EPSILON * magnitude_[index];
 }
 
 void PatchGeometry::texture_coordinates(const ppm_hit &hit, double *s, double *t) const {

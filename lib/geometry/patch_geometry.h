@@ -47,13 +47,7 @@ public:
         std::vector<SubPatch> sub_patches; // per_edge x per_edge per patch, row by row
         int per_edge = 1;
         std::vector<IntervalMatrix> intervals; // cutting [0, 1] into per_edge pieces
-        // Where sub-patch i of a patch lies, without divisions (patch_geometry.cpp, SubPatchPlace).
-        struct Places {
-            unsigned per_patch = 1;   // per_edge^2
-            double inv_per_patch = 1; // its reciprocal, rounded
-            std::vector<uint8_t> row, column; // by index within a patch (per_edge <= 32)
-            std::vector<double> cuts;         // per_edge + 1 cuts of [0, 1], the last exactly 1
-        } places;
+        std::vector<double> cuts;              // per_edge + 1 cuts of [0, 1], the last exactly 1
         EmbreeFrame frame;
     };
     const Data &data() const { return data_; } // valid after the scene's commit

@@ -14,6 +14,65 @@
 
 namespace ppm {
 
+namespace {
+
+// The search's thresholds. Region coordinates a, b run over [0, 1] within the input patch;
+// lengths are in ray space (the coordinates' units).
+
+// A rotation maps a vector's largest coordinate to at most sqrt(3) times it (|v|_inf <= |v|_2
+// <= sqrt(3) |v|_inf in three dimensions); the closest double to sqrt(3).
+constexpr double kSqrt3 = 1.7320508075688772;
+// Rounding of the ray-space control points, in ulps of their magnitude: the projection adds a
+// few and each De Casteljau halving about one more (averaging does not grow earlier errors);
+// boxes and slabs are widened by it. A power of two with headroom over a typical search depth.
+constexpr double kNoiseUlps = 64;
+// No region is split below this many times the noise: smaller, its box is rounding, not shape.
+constexpr double kPointSizeInNoise = 16;
+// Where the Jacobian is regular, an undecided region is split this far below the point size
+// before it counts as a hit: a grazing ray stays within the tolerance over a stretch much
+// longer than the tolerance, so a merely tolerance-sized region can lie before the crossing
+// or hold two; a thousandth costs about ten more halvings, and only on such regions.
+constexpr double kFineShare = 1e-3;
+// Newton's residual |x|, |y| counts as zero at this share of the tolerance (or the noise,
+// whichever is larger): far below what the tolerance allows, and within reach of doubles.
+constexpr double kResidualShare = 1e-4;
+// Newton has converged when its last step moved the point by less than this share of the
+// point size: convergence is quadratic, so the remaining error is of the order of its square.
+constexpr double kStepShare = 0.1;
+// ... or when the Krawczyk data prove the point within this share of the point size of the
+// root (a bound, where the step test is an estimate): half the step test's share, and the
+// step that follows is still taken, so the root ends well inside the tolerance.
+constexpr double kProvenShare = 0.05;
+// |det J| below this times |J|_1^2 is singular: a condition number near 1e14 leaves the
+// inverse Y = J^-1 computed in double with an error of about 1e14 * DBL_EPSILON ~ 1 %, too
+// little to prove anything with.
+constexpr double kSingularDeterminant = 1e-14;
+// The interval arithmetic of the Krawczyk test is not outward rounded; its few dozen
+// operations on values of order 1 (the region's own [0, 1]^2) round by ~1e-15: this margin
+// covers them ten thousandfold and is far below any width the search splits to.
+constexpr double kIntervalMargin = 1e-12;
+// A contraction |I - Y J| below 1 proves injectivity; below this it also stays clear of 1 for
+// rounding, and the proven distance to the root (a division by 1 - contraction) is at most
+// ten times the Newton step's size.
+constexpr double kInjectiveContraction = 0.9;
+// Newton from a proven start converges quadratically, from one correct bit to 53 in about
+// six steps; 16 allows slow first steps, and a run still unconverged then is wandering (the
+// region is split instead).
+constexpr int kNewtonIterations = 16;
+// A converged root is this region's if it lies within this share of the region's width of it
+// (plus kParameterRounding): a root on the border of two regions may be taken by either.
+constexpr double kRegionShare = 1e-9;
+// A few ulps of a parameter in [0, 1]: the rounding of a region's bounds.
+constexpr double kParameterRounding = 4 * DBL_EPSILON;
+// Newton may overshoot a region on its way to a root inside; once it is more than half the
+// region's width outside, it has left the neighbourhood the region's proof speaks of.
+constexpr double kNewtonWander = 0.5;
+// Regions narrower than this in both parameters are points: halving a width of 1e-15 within
+// [0, 1] (about 4.5 ulps of 1) no longer gives distinct midpoints.
+constexpr double kParameterResolution = 1e-15;
+
+} // namespace
+
 RayFrame RayFrame::from_ray(const Vec3 &org, const Vec3 &dir) { return from_ray(org, dir, length(dir)); }
 
 RayFrame RayFrame::from_ray(const Vec3 &org, const Vec3 &dir, double dir_length) {
@@ -46,8 +105,9 @@ double ControlGrid::bound_derivatives() const {
             dv = std::max(dv, std::fabs(x[across + 4] - x[across]) + std::fabs(y[across + 4] - y[across]) +
                                   std::fabs(z[across + 4] - z[across]));
         }
-    // The 1-norm is not rotation invariant; sqrt(3) covers any rotation of a 2-norm bound.
-    return 3.0 * std::sqrt(3.0) * std::max(du, dv);
+    // A cubic's derivative has the control points 3 (c_k+1 - c_k). The 1-norm is not rotation
+    // invariant; sqrt(3) covers any rotation of a 2-norm bound.
+    return 3.0 * kSqrt3 * std::max(du, dv);
 }
 
 namespace {
@@ -66,20 +126,20 @@ struct Region {
 // Halving a region at most halves the spread of its Jacobian, so the contraction of a child
 // is at least about half its parent's. Above this hint (the parent measured more than 2) the
 // interval test cannot prove a unique root (that needs a contraction below 1) and is skipped:
-// on whole patches (patch_presplit 1) most tests of the first levels were wasted, and a
-// "no root" verdict never came before the box and slab tests (teapot, random rays). Skipping
-// only costs a split, never a root; regions below the point size are always tested, as the
-// end of the subdivision reads the test's `singular`.
+// such regions fill the first levels of a search on whole patches (patch_presplit 1), where
+// the box and slab tests already cull what a "no root" verdict would. Skipping only costs a
+// split, never a root; regions below the point size are always tested, as the end of the
+// subdivision reads the test's `singular`.
 constexpr double skip_krawczyk_hint = 1;
 
 // The depth-first work list of the search. Regions stay in the slot they were written to and
 // the stack holds slot numbers, so a split writes its children in place: no region (400
-// bytes) is copied on its way through the stack, which profiles showed as a quarter of the
-// search's time when whole patches are searched (patch_presplit 1).
+// bytes) is copied on its way through the stack, a cost that grows with the search's depth
+// (whole patches, patch_presplit 1).
 class RegionStack {
 public:
     // Each level of the search pushes two regions and pops one; a region shrinks to a width
-    // of 1e-15 in a and b within about 100 levels.
+    // of kParameterResolution (about 2^-50) in a and b within about 100 levels.
     static constexpr int capacity = 160;
     static constexpr int kWholePatch = 255; // a slot number no pool slot has
 
@@ -256,7 +316,7 @@ Krawczyk krawczyk_test(const Projected &p) {
     const Jet c = evaluate_jet(p, 0.5, 0.5);
     const double det = c.xa * c.yb - c.xb * c.ya;
     const double jnorm = std::fabs(c.xa) + std::fabs(c.xb) + std::fabs(c.ya) + std::fabs(c.yb);
-    if (!(std::fabs(det) > 1e-14 * jnorm * jnorm)) {
+    if (!(std::fabs(det) > kSingularDeterminant * jnorm * jnorm)) {
         k.singular = true;
         return k;
     }
@@ -277,7 +337,7 @@ Krawczyk krawczyk_test(const Projected &p) {
     if (!std::isfinite(r0 + r1 + step_a + step_b)) return k;
 
     // Inflate by a rounding margin: the interval arithmetic above is not outward rounded.
-    const double margin = 1e-12;
+    const double margin = kIntervalMargin;
     const double k0lo = 0.5 - step_a - r0 - margin, k0hi = 0.5 - step_a + r0 + margin;
     const double k1lo = 0.5 - step_b - r1 - margin, k1hi = 0.5 - step_b + r1 + margin;
     k.start_a = 0.5 - step_a;
@@ -288,7 +348,7 @@ Krawczyk krawczyk_test(const Projected &p) {
         k.verdict = Verdict::no_root;
     else if (k0lo > 0.0 && k0hi < 1.0 && k1lo > 0.0 && k1hi < 1.0)
         k.verdict = Verdict::one_root;
-    else if (k.contraction < 0.9) // stay clear of 1 for rounding
+    else if (k.contraction < kInjectiveContraction)
         k.verdict = Verdict::at_most_one_root;
     return k;
 }
@@ -307,7 +367,7 @@ struct Solver {
     bool newton(double a, double b, const Region &r, const Krawczyk *proof, double &root_a,
                 double &root_b, double &distance) const {
         const double wa = r.a1 - r.a0, wb = r.b1 - r.b0;
-        for (int iteration = 0; iteration < 16; ++iteration) {
+        for (int iteration = 0; iteration < kNewtonIterations; ++iteration) {
             const Jet j = evaluate_jet(top, a, b);
             const double det = j.xa * j.yb - j.xb * j.ya;
             if (!(std::fabs(det) > 0) || !std::isfinite(det)) return false;
@@ -322,8 +382,8 @@ struct Solver {
             a += da;
             b += db;
             if (converged) {
-                const double margin_a = 1e-9 * wa + 4 * DBL_EPSILON;
-                const double margin_b = 1e-9 * wb + 4 * DBL_EPSILON;
+                const double margin_a = kRegionShare * wa + kParameterRounding;
+                const double margin_b = kRegionShare * wb + kParameterRounding;
                 if (!(a >= r.a0 - margin_a && a <= r.a1 + margin_a && b >= r.b0 - margin_b &&
                       b <= r.b1 + margin_b))
                     return false; // a root of another region: it is found there
@@ -333,8 +393,8 @@ struct Solver {
                 return true;
             }
             // Newton may overshoot a little on its way; far outside the region it is lost.
-            if (!(a >= r.a0 - 0.5 * wa && a <= r.a1 + 0.5 * wa && b >= r.b0 - 0.5 * wb &&
-                  b <= r.b1 + 0.5 * wb))
+            if (!(a >= r.a0 - kNewtonWander * wa && a <= r.a1 + kNewtonWander * wa &&
+                  b >= r.b0 - kNewtonWander * wb && b <= r.b1 + kNewtonWander * wb))
                 return false; // also catches NaN
         }
         return false;
@@ -364,16 +424,16 @@ bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchR
     // The frame is a rotation: the largest projected coordinate is within sqrt(3) of the
     // largest coordinate of (control point - origin).
     const Bounds2 top_box = bounds_of(top);
-    const double magnitude = 1.7320508075688772 *
+    const double magnitude = kSqrt3 *
         std::max({-top_box.xmin, top_box.xmax, -top_box.ymin, top_box.ymax, -top_box.zmin, top_box.zmax});
 
     // Projection and De Casteljau each add a few ulps of the coordinates' magnitude.
-    const double noise = 64 * DBL_EPSILON * magnitude;
-    const double point_size = std::max(query.tolerance, 16 * noise);
+    const double noise = kNoiseUlps * DBL_EPSILON * magnitude;
+    const double point_size = std::max(query.tolerance, kPointSizeInNoise * noise);
     // Where the Jacobian is regular, undecided regions are split down to this size.
-    const double fine_size = std::max(1e-3 * point_size, 16 * noise);
-    const Solver solver{top, patch.derivative_bound, std::max(noise, 1e-4 * query.tolerance),
-                        0.1 * point_size, 0.05 * point_size};
+    const double fine_size = std::max(kFineShare * point_size, kPointSizeInNoise * noise);
+    const Solver solver{top, patch.derivative_bound, std::max(noise, kResidualShare * query.tolerance),
+                        kStepShare * point_size, kProvenShare * point_size};
     const double znear = query.tnear * ray.dir_length;
     double zbest = query.tfar * ray.dir_length;
     bool found = false;
@@ -425,7 +485,7 @@ bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchR
         // edge) or far below the tolerance, though: a grazing ray stays within the tolerance
         // of the surface over a stretch much longer than the tolerance, so a merely small
         // region may lie well before the crossing, or hold two close crossings.
-        const bool at_precision_limit = wa <= 1e-15 && wb <= 1e-15;
+        const bool at_precision_limit = wa <= kParameterResolution && wb <= kParameterResolution;
         if ((extent <= point_size && (proof.singular || extent <= fine_size)) || at_precision_limit) {
             // Newton may still reach a crossing just outside the region; only where it finds
             // none is the centre itself the answer.
@@ -444,7 +504,7 @@ bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchR
 
         double along_a, along_b;
         net_lengths(r.cp, along_a, along_b);
-        const bool cut_a = wb <= 1e-15 || (wa > 1e-15 && along_a >= along_b);
+        const bool cut_a = wb <= kParameterResolution || (wa > kParameterResolution && along_a >= along_b);
         // Both halves go on the stack, the one reaching nearer along the ray on top.
         const int low_slot = stack.acquire(), high_slot = stack.acquire();
         Region &low = stack[low_slot], &high = stack[high_slot]; // the halves below / above the cut

@@ -68,8 +68,7 @@ void SphereSet::add(const Vec3 &center, double radius) {
 // as SphereGeometry's test computes them for one sphere, here for four at once: a group pays for
 // a square root and a division unless the line misses all its spheres, but no lane waits for
 // another's test. (An estimate of the nearest sphere, a SIMD exclusion test and scalar exact
-// tests of the survivors took 16 % more instructions per camera path on smallppm, and 15 %
-// more time.)
+// tests of the survivors cost more: docs/bench/code-history.md.)
 void SphereSet::nearest_roots(const RayQuery &query, double *t) const {
     const double ox = query.org.x, oy = query.org.y, oz = query.org.z;
     const double dx = query.dir.x, dy = query.dir.y, dz = query.dir.z;

@@ -1,7 +1,8 @@
 // Sine and cosine for the sampling warps, without libm's general range reduction: the
 // renderer's angles are either within [-pi/4, pi/4] already (the concentric disk map) or
-// 2 pi u for a uniform u in [0, 1), which reduces exactly by octants. libm's sincos was 5 %
-// of a photon pass. Accurate to a few ulps (tests/test_bsdf.cpp checks against std::sin/cos).
+// 2 pi u for a uniform u in [0, 1), which reduces exactly by octants. Kept because it pays
+// over 5 % of smallppm's photon pass (docs/bench/code-history.md). Accurate to a few ulps
+// (tests/test_bsdf.cpp checks against std::sin/cos).
 #pragma once
 
 namespace ppm {

@@ -23,11 +23,8 @@ constexpr int kMaxAcross = 5;
 // The typical radius is the mean over an evenly spaced sample of this many hit points.
 constexpr std::size_t kRadiusSamples = 4096;
 // Cells are this many typical radii wide. Wide cells list each hit point in fewer cells (a
-// cheaper build) and a photon reads more candidates, but they are contiguous. With the old
-// scattered candidates, 2, 4, 8 and 16 radii gave 0.53, 0.64, 0.66 and 0.60 M photon paths/s
-// on smallppm; with contiguous entries, interleaved one-thread runs put 5 behind 8 on both
-// passes, and 12 ahead of 8 on the eye pass (the build) at the same photon speed (16: the
-// eye pass a little faster again, photons ~4 % slower).
+// cheaper build) and a photon reads more candidates, but they are contiguous: the balance
+// was measured (docs/bench/code-history.md).
 constexpr double kCellWidthInRadii = 12;
 // The build lists entries and claims room in buckets by chunks of this many points.
 constexpr std::size_t kChunkPoints = 4096;
@@ -37,7 +34,7 @@ constexpr std::size_t kChunkPoints = 4096;
 // Blocks of 4 x 4 x 4 cells are hashed; the 64 cells of a block take 64 consecutive buckets.
 // Neighbouring cells then share cache lines of the tables, so a build that walks the hit
 // points in image order, and a photon pass in Morton order, mostly hit the cache (a hash per
-// cell missed it at nearly every entry and made the build ten times slower).
+// cell misses the cache at nearly every entry).
 std::uint64_t HitPointGrid::bucket(std::int64_t i, std::int64_t j, std::int64_t k) const {
     const auto bi = static_cast<std::uint64_t>(i), bj = static_cast<std::uint64_t>(j), bk = static_cast<std::uint64_t>(k);
     std::uint64_t h = (bi >> 2) * 0x9E3779B97F4A7C15ull ^ (bj >> 2) * 0xC2B2AE3D27D4EB4Full ^
@@ -46,8 +43,8 @@ std::uint64_t HitPointGrid::bucket(std::int64_t i, std::int64_t j, std::int64_t 
     return (h << 6 | (bi & 3) << 4 | (bj & 3) << 2 | (bk & 3)) & bucket_mask_;
 }
 
-// Inlined, as are cells_of and for_each_bucket: the listing called them per point and read
-// their ranges back from memory (its time 20.6 -> 17.6 ms on one thread, teapot benchmark).
+// Inlined, as are cells_of and for_each_bucket: the listing calls them per point, and out of
+// line their ranges would be read back from memory.
 // Cell coordinate of x along an axis, clamped to the grid (the balls lie inside it by
 // construction; the clamp only guards against rounding at its faces).
 [[gnu::always_inline]] inline std::int64_t HitPointGrid::cell(double x, int axis) const {
@@ -136,10 +133,9 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count, const HitPoi
     const double width = std::max({kCellWidthInRadii * sum_r / samples, 2.0 * max_r / (kMaxAcross - 1) * (1 + 1e-6),
                                    extent * 0x1p-30, 0x1p-500});
     // Hit points crowd on walls, and the walls bounding a scene are the faces of the points'
-    // box. A face lying near a cell face put every ball on that wall into two cells (on the
-    // teapot benchmark 1.06 M entries in most passes, 1.5-1.75 M in a third of them). So each
-    // axis gets its own width, at least `width`, fitting a whole number of cells between the
-    // box's two faces, which then lie in the middle of cells.
+    // box. A face lying near a cell face would put every ball on that wall into two cells. So
+    // each axis gets its own width, at least `width`, fitting a whole number of cells between
+    // the box's two faces, which then lie in the middle of cells.
     for (int a = 0; a < 3; ++a) {
         const double span = bounds.box.upper[a] - bounds.box.lower[a];
         const double across = std::floor(span / width);
@@ -153,8 +149,7 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count, const HitPoi
 
     // A bucket per 4 points: cells 12 radii wide hold many points each (a radius spans a pixel
     // or more), so occupied cells stay well below the buckets even as radii shrink, while the
-    // build's counters, zeroing and serial prefix sum are a quarter of a bucket per point's
-    // (eye pass 0.30 -> 0.28 s on smallppm; a bucket per 16 points gained little more).
+    // build's counters, zeroing and serial prefix sum cost a quarter of a bucket per point's.
     std::uint64_t buckets = 1;
     while (buckets < count / 4 || buckets < 64) buckets <<= 1;
     bucket_mask_ = buckets - 1;
@@ -194,10 +189,10 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count, const HitPoi
     }
     bucket_start_[buckets] = static_cast<std::uint32_t>(total);
     // Kept between builds, replaced (not copied: the old entries are stale) when too small,
-    // and never filled with defaults: a vector's resize copied and zeroed ~50 MB on one
-    // thread, which made a render's first two grids 3-4x slower than the rest. An eighth more
-    // than asked: the count varies by a few thousand between passes, and each new buffer's
-    // first touch cost a build twice its time. Entries past `total` are stale and never read.
+    // and never filled with defaults: a vector's resize would copy and zero the whole table
+    // (tens of MB) on one thread. An eighth more than asked: the count varies by a few
+    // thousand between passes, and a new buffer's first touch costs a build about its time
+    // again. Entries past `total` are stale and never read.
     if (entries_capacity_ < total) {
         entries_.reset(); // first: the old and the new buffer are never held at once
         entries_capacity_ = 0;

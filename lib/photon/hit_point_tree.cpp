@@ -36,8 +36,8 @@ using Tree = nanoflann::KDTreeSingleIndexAdaptor<
     nanoflann::L2_Simple_Adaptor<double, EntryCloud, double, std::uint32_t>, EntryCloud, 3,
     std::uint32_t>;
 
-// Queries reach many points (the ball of the largest radius), so big leaves pay: 20-40 were
-// fastest in tests/bench_hit_points, nanoflann's default of 10 about 25% slower.
+// Queries reach many points (the ball of the largest radius), so leaves bigger than
+// nanoflann's default of 10 pay (measured with tests/bench_hit_points: docs/bench/code-history.md).
 constexpr std::size_t kLeafSize = 32;
 
 // nanoflann's result-set interface. The tree hands over every point with its own (L2)

@@ -70,8 +70,7 @@ VisiblePoint Renderer::make_visible_point(const SurfacePoint &sp, const Vec3 &ra
 // points, added to direct[k]; invalid points get nothing. at[k]: point k's hit, if kept (the
 // shadow rays leave it: Scene::occluded). Light by light, every point's sample is drawn before
 // any shadow ray is traced: a sample is a chain of a square root and a division, and chains
-// of different points overlap where each point's chain used to wait for its own (the light
-// sampling had ~4 % of the eye pass's perf samples, mostly waiting). Each point draws its
+// of different points overlap instead of each waiting for its own. Each point draws its
 // numbers in the same order as alone (lights in turn).
 void Renderer::add_direct_light(const VisiblePoint *vps, const ppm_hit *const *at, CounterRng *rngs,
                                 std::uint32_t count, Rgb *direct) const {
@@ -101,8 +100,8 @@ void Renderer::add_direct_light(const VisiblePoint *vps, const ppm_hit *const *a
 }
 
 // What a group of camera paths holds while it is traced. Made once per task and reused by its
-// groups: the visible points and surface points (~250 bytes each, with member initialisers)
-// were built afresh for every group, 16 KB of copying per 32 pixels.
+// groups: its visible points and surface points (~250 bytes each, with member initialisers)
+// would otherwise be built afresh for every group, 16 KB per 32 pixels.
 struct Renderer::PathGroup {
     CounterRng rngs[kPathGroup];
     ppm_ray rays[kPathGroup];
@@ -121,7 +120,7 @@ void Renderer::trace_sppm_paths(std::uint32_t first, std::uint32_t count, std::u
     count = std::min(count, kPathGroup);
     for (std::uint32_t k = 0; k < count; ++k) {
         // The paths end reading their pixels' radii: fetch them early, or each path waits for
-        // its 64-byte statistics record (~5 % of the eye pass).
+        // its 64-byte statistics record.
         __builtin_prefetch(&stats_[first + k]);
         rngs[k] = CounterRng(settings_.seed, kCameraStream, pass, first + k);
         rays[k] = camera_ray(camera_, first + k, rngs[k]);

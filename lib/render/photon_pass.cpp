@@ -103,8 +103,9 @@ void Renderer::trace_photon(std::uint64_t index, std::uint32_t pass, std::vector
 }
 
 void Renderer::gather_sorted() {
-    // The photons stay in the threads' buffers (copying them into one list was a serial 5 % of
-    // the pass); an index runs through the buffers in turn.
+    // The photons stay in the threads' buffers and an index runs through them in turn. Kept
+    // because it pays: one copied list would raise ppm-bench render's peak memory by about
+    // 20 % at 1M photons per pass (docs/bench/code-history.md).
     batch_parts_.clear();
     batch_part_starts_.clear();
     std::size_t total = 0;
@@ -119,10 +120,9 @@ void Renderer::gather_sorted() {
             std::upper_bound(batch_part_starts_.begin(), batch_part_starts_.end(), index) - batch_part_starts_.begin() - 1;
         return (*batch_parts_[part])[index - batch_part_starts_[part]];
     };
-    // One 64-bit word per photon, its Morton code above its index: sorting plain integers is
-    // about twice as fast as sorting pairs. (Radix sorting by the code alone was no faster on
-    // two threads, and 10 bits per axis ordered the searches too coarsely.) The deposits'
-    // order does not change the image: flux is summed in fixed point.
+    // One 64-bit word per photon, its Morton code above its index: plain integers sort faster
+    // than pairs. Up to 21 bits per axis: a coarser code orders the searches less closely.
+    // The deposits' order does not change the image: flux is summed in fixed point.
     int index_bits = 1;
     while ((std::uint64_t(1) << index_bits) < total) ++index_bits;
     const int axis_bits = std::min(21, (64 - index_bits) / 3);
@@ -141,7 +141,7 @@ void Renderer::gather_sorted() {
         if (cancelled()) return;
         for (std::size_t i = range.begin(); i < range.end(); ++i) {
             // The photons lie in path order, so their records are read at random: fetch
-            // a few ahead, or each search waits for its photon (half the search's time).
+            // a few ahead, or each search waits for its photon.
             if (i + kPrefetchAhead < range.end())
                 __builtin_prefetch(&photon_at(batch_order_[i + kPrefetchAhead] & index_mask));
             deposit(photon_at(batch_order_[i] & index_mask));

@@ -11,7 +11,7 @@
 //    keeps its own statistics; later passes only re-sample direct light and trace photons.
 // Direct light (light sources seen by a visible point, and emitters seen through specular
 // chains) is estimated by ray tracing in the eye pass, so photons are not stored at their
-// first hit (PITFALLS.md).
+// first hit: there they would count direct light a second time.
 //
 // Determinism: each camera path and each photon draws counter-based random numbers from
 // (seed, pass, index) and photon flux is summed in fixed point, so an image depends on the

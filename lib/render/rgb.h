@@ -1,5 +1,6 @@
 // Linear RGB triple for reflectances, path weights and radiance. Double precision like Vec3:
-// photon flux is accumulated over billions of photons (PITFALLS.md).
+// photon flux is accumulated over billions of photons, and after ~1e9 additions a float
+// sum loses the bits of each new one.
 #pragma once
 
 #include <algorithm>

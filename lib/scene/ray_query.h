@@ -15,7 +15,7 @@
 
 namespace ppm {
 
-// std::nextafter(f, INFINITY) without the libm call (1 % of a photon pass): the float above f,
+// std::nextafter(f, INFINITY) without the libm call (it runs per ray): the float above f,
 // f itself for +inf and NaN.
 inline float next_float_up(float f) {
     if (!(f < INFINITY)) return f;

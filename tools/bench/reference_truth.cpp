@@ -54,7 +54,7 @@ bool reference_normal(const ref::Patch &patch, real u, real v, real n[3]) {
 std::string reference_description(const ref::Intersector &reference) {
     char text[400];
     std::snprintf(text, sizeof text,
-                  "reference: tests/support/reference_intersector (independent of libppm: "
+                  "reference: tools/reference/reference_intersector (independent of libppm: "
                   "world-space De Casteljau subdivision to leaves of 1e-6 diagonal, long-double "
                   "Newton on (u, v, t)); model diagonal %.6Lg",
                   reference.diagonal());

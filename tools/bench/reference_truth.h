@@ -1,5 +1,5 @@
 // Ground truth of the benchmark: every ray of every set is answered by the independent
-// long-double reference intersector of the tests (tests/support/reference_intersector.*:
+// long-double reference intersector of the tests (tools/reference/reference_intersector.*:
 // world-space De Casteljau subdivision and long-double Newton, sharing no code with libppm).
 #pragma once
 

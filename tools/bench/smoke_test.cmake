@@ -14,7 +14,7 @@ if(NOT status EQUAL 0)
   message(FATAL_ERROR "ppm-bench intersect exited with '${status}':\n${errors}")
 endif()
 foreach(pattern
-    "reference: tests/support/reference_intersector"
+    "reference: tools/reference/reference_intersector"
     "\n== random: 200 rays"
     "\n== grazing-1e-6: 50 rays"
     "\n== leaving: "

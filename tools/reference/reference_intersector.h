@@ -1,4 +1,5 @@
-// Test-only reference for ray / bicubic Bezier patch intersection, in long double.
+// Reference for ray / bicubic Bezier patch intersection, in long double: the ground truth of
+// the tests and of ppm-bench (library ppm_reference), never linked into libppm.
 //
 // Deliberately a different algorithm from libppm's (which projects each patch into ray space,
 // proves roots with a Krawczyk interval test and runs double-precision Newton on two
