@@ -186,8 +186,11 @@ static void test_renderer_typed_settings(void **state) {
     assert_ppm_ok(ppm_renderer_get_double(r, "max_depth", &d));
     assert_true(d == 4.0);
     assert_ppm_error(ppm_renderer_set_double(r, "seed", 2.5), PPM_ERROR_INVALID_ARGUMENT, "seed");
-    assert_ppm_error(ppm_renderer_get_int(r, "alpha", &n), PPM_ERROR_INVALID_ARGUMENT, "alpha");
-    assert_ppm_error(ppm_renderer_get_double(r, "mode", &d), PPM_ERROR_INVALID_ARGUMENT, "mode");
+    assert_ppm_error(ppm_renderer_get_int(r, "alpha", &n), PPM_ERROR_INVALID_ARGUMENT, "'alpha' is a number setting");
+    assert_ppm_error(ppm_renderer_get_double(r, "mode", &d), PPM_ERROR_INVALID_ARGUMENT, "'mode' is a string setting");
+    assert_ppm_error(ppm_renderer_set_string(r, "seed", "3"), PPM_ERROR_INVALID_ARGUMENT,
+                     "'seed' is an integer setting");
+    assert_ppm_error(ppm_renderer_set_int(r, "photons", 3), PPM_ERROR_INVALID_ARGUMENT, "(settings: mode,");
     assert_ppm_error(ppm_renderer_get_double(r, NULL, &d), PPM_ERROR_INVALID_ARGUMENT, "key");
     assert_ppm_error(ppm_renderer_get_double(NULL, "alpha", &d), PPM_ERROR_INVALID_ARGUMENT, "renderer");
     assert_ppm_error(ppm_renderer_set_int(r, NULL, 1), PPM_ERROR_INVALID_ARGUMENT, "key");
