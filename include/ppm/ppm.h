@@ -18,9 +18,10 @@
  *    may be queried (ppm_scene_intersect/occluded, getters) from many threads at once after
  *    ppm_scene_commit, but building it (add/set/commit) must not overlap any other call on it.
  *  - Doubles are IEEE binary64; all geometry is stored and intersected in double precision.
- *  - Typed settings: contexts, scenes, renderers and scene files (and meshes, read only)
- *    take string keys through ppm_<object>_set_int / _set_double / _get_int / _get_double
- *    (renderers also _set_string / _get_string). The same rules hold for each of them:
+ *  - Typed settings: contexts, scenes and renderers take string keys through
+ *    ppm_<object>_set_int / _set_double / _get_int / _get_double (renderers also
+ *    _set_string / _get_string); scene files have read-only values (_get_int / _get_double),
+ *    meshes read-only doubles (_get_double). The same rules hold for each of them:
  *    an unknown key is INVALID_ARGUMENT naming the key and listing the object's keys; an
  *    integer key also takes set_double with a whole number and answers get_double exactly;
  *    a floating-point key also takes set_int, but get_int refuses it (INVALID_ARGUMENT
