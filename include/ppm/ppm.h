@@ -18,6 +18,20 @@
  *    may be queried (ppm_scene_intersect/occluded, getters) from many threads at once after
  *    ppm_scene_commit, but building it (add/set/commit) must not overlap any other call on it.
  *  - Doubles are IEEE binary64; all geometry is stored and intersected in double precision.
+ *  - Typed settings: contexts, scenes and renderers take string keys through
+ *    ppm_<object>_set_int / _set_double / _get_int / _get_double (renderers also
+ *    _set_string / _get_string); scene files have read-only values (_get_int / _get_double),
+ *    meshes read-only doubles (_get_double). The same rules hold for each of them:
+ *    an unknown key is INVALID_ARGUMENT naming the key and listing the object's keys; an
+ *    integer key also takes set_double with a whole number and answers get_double exactly;
+ *    a floating-point key also takes set_int, but get_int refuses it (INVALID_ARGUMENT
+ *    naming its type) rather than round; read-only keys refuse every setter. New keys are
+ *    how objects gain settings without a new function.
+ *  - Growth: functions are never changed once released; a changed signature or struct is a
+ *    new function or struct named *_v2 beside the old one, which keeps working. Structs
+ *    that may grow start with a `size` field (sizeof the struct as the caller compiled it):
+ *    the library reads and writes only that many bytes, so callers built against an older
+ *    header keep working, and a field appended later means "as before" when 0.
  */
 #ifndef PPM_PPM_H
 #define PPM_PPM_H
@@ -77,20 +91,25 @@ typedef void (*ppm_error_callback)(void *user_data, ppm_status status, const cha
  * Errors: INVALID_ARGUMENT (out NULL), UNSUPPORTED (Embree device creation failed). */
 PPM_API ppm_status ppm_context_create(ppm_context *out_context);
 /* Adds / drops a reference (atomic: thread safe). The context is freed when the caller's and
- * all scenes' references are gone. */
+ * all scenes' references are gone. Errors (retain): INVALID_ARGUMENT (context NULL). */
 PPM_API ppm_status ppm_context_retain(ppm_context context);
 PPM_API void ppm_context_release(ppm_context context);
 
-/* Integer settings of a context. Keys:
- *   "threads"  worker threads for batch queries and scene builds; 0 (default) = all hardware
- *              threads; 1..1024 otherwise. Takes effect for calls that start after it.
- * Errors: INVALID_ARGUMENT (NULL, unknown key, value out of range).
- * Thread safety: not concurrently with other calls using the same context. */
+/* Settings of a context (typed settings: see the top of this header). Keys:
+ *   "threads"  int: worker threads for batch queries, scene builds and rendering; 0
+ *              (default) = all hardware threads; 1..1024 otherwise. Takes effect for calls
+ *              that start after it.
+ * Errors: INVALID_ARGUMENT (NULL, unknown key, wrong type, value out of range).
+ * Thread safety: setters not concurrently with other calls using the same context (its
+ * scenes' and renderers' calls included); getters concurrently with other getters. */
 PPM_API ppm_status ppm_context_set_int(ppm_context context, const char *key, int64_t value);
 PPM_API ppm_status ppm_context_get_int(ppm_context context, const char *key, int64_t *out_value);
+PPM_API ppm_status ppm_context_set_double(ppm_context context, const char *key, double value);
+PPM_API ppm_status ppm_context_get_double(ppm_context context, const char *key, double *out_value);
 
-/* Sets (or clears, with callback NULL) the error callback. Not concurrently with other calls
- * using the same context. */
+/* Sets (or clears, with callback NULL) the error callback; user_data is passed back as it is
+ * and never dereferenced by the library. Errors: INVALID_ARGUMENT (context NULL). Not
+ * concurrently with other calls using the same context. */
 PPM_API ppm_status ppm_context_set_error_callback(ppm_context context, ppm_error_callback callback,
                                                   void *user_data);
 
@@ -103,36 +122,44 @@ typedef struct ppm_scene_t *ppm_scene;
 #define PPM_INVALID_ID 0xFFFFFFFFu
 
 /* Creates an empty scene; the caller owns the one reference returned, the scene holds one on
- * the context. Thread safe with respect to other scenes of the same context. */
+ * the context. Thread safe with respect to other scenes of the same context.
+ * Errors: INVALID_ARGUMENT (context or out_scene NULL). */
 PPM_API ppm_status ppm_scene_create(ppm_context context, ppm_scene *out_scene);
 /* Adds / drops a reference (atomic: thread safe). Releasing the last reference while another
- * thread still queries the scene is the caller's error. */
+ * thread still queries the scene is the caller's error. Errors (retain): INVALID_ARGUMENT
+ * (scene NULL). */
 PPM_API ppm_status ppm_scene_retain(ppm_scene scene);
 PPM_API void ppm_scene_release(ppm_scene scene);
 
-/* Floating-point settings of a scene. Keys:
- *   "tolerance"  accuracy of every reported hit, relative to the diagonal of the scene's
- *                bounding box: hit distance and point are within tolerance * diagonal of the
- *                exact ones. Default 1e-9; range [1e-14, 1e-2]. Looser is faster mainly where
- *                the surface is degenerate or the ray tangent; Newton converges anyway.
- *                Below about 1e-11 the bound cannot hold for rays grazing the surface at
- *                1e-6 rad or flatter: such a hit moves by eps / sin(angle) when the ray is
+/* Settings of a scene (typed settings: see the top of this header). Keys:
+ *   "tolerance"  double: accuracy of every reported hit, relative to the diagonal of the
+ *                scene's bounding box: hit distance and point are within tolerance * diagonal
+ *                of the exact ones. Default 1e-9; range [1e-14, 1e-2]. Looser is faster
+ *                mainly where the surface is degenerate or the ray tangent; Newton converges
+ *                anyway. Below about 1e-11 the bound cannot hold for rays grazing the surface
+ *                at 1e-6 rad or flatter: such a hit moves by eps / sin(angle) when the ray is
  *                rounded to double, so no double-precision method can place it better.
- *   "patch_presplit"  Bezier patches only: each patch is cut into n x n sub-patches at
+ *   "patch_presplit"  int: Bezier patches only: each patch is cut into n x n sub-patches at
  *                commit, each with its own bounding box in the scene's BVH, so a ray tests
- *                only the few sub-patches near it. A whole number n in [1, 32], default 12.
- *                Memory against speed: every sub-patch costs about 140 bytes (its culling
- *                data and its share of the BVH), so the teapot's 32 patches (12 KiB of
- *                control points) take 0.64 MiB at 12, 0.066 MiB at 3 and 0.030 MiB at 1; rays
- *                cost about 1.3 (3) to 2.5 (1) times as much as at 12, see README
- *                "Benchmarks". Accuracy does not depend on it.
+ *                only the few sub-patches near it. n in [1, 32], default 12. Memory against
+ *                speed: memory grows with n^2 per patch (each sub-patch keeps its culling
+ *                data and a share of the BVH), while a smaller n makes every ray test larger
+ *                sub-patches and so costs time; README "Benchmarks" measures both. Accuracy
+ *                does not depend on it.
  * A change takes effect at the next ppm_scene_commit.
- * Errors: INVALID_ARGUMENT (NULL, unknown key, value NaN or out of range). */
+ * Errors: INVALID_ARGUMENT (NULL, unknown key, wrong type, value NaN, not whole for an int
+ * key, or out of range). Thread safety: setters change the scene (see Geometry below);
+ * getters may run concurrently with queries and other getters. */
+PPM_API ppm_status ppm_scene_set_int(ppm_scene scene, const char *key, int64_t value);
+PPM_API ppm_status ppm_scene_get_int(ppm_scene scene, const char *key, int64_t *out_value);
 PPM_API ppm_status ppm_scene_set_double(ppm_scene scene, const char *key, double value);
 PPM_API ppm_status ppm_scene_get_double(ppm_scene scene, const char *key, double *out_value);
 
 /* Geometry. Each add call copies its input and returns a geometry id (0, 1, 2, ... in the
  * order of addition) in *out_geom_id, which may be NULL. Adding marks the scene uncommitted.
+ * Every call below that takes a geom_id fails with INVALID_ARGUMENT when it names no
+ * geometry of the scene, and every call fails with INVALID_ARGUMENT for a NULL scene or a
+ * NULL pointer argument that is not documented as optional.
  * Coordinates must be finite, and every coordinate, length and radius of the placed geometry
  * (its transform applied) must lie within +-1e12 scene units; degenerate input (zero radius,
  * zero-area quad, out-of-range index) and input beyond that limit are INVALID_ARGUMENT naming
@@ -188,15 +215,20 @@ PPM_API ppm_status ppm_scene_load_obj(ppm_scene scene, const char *path, uint32_
 /* Affine transform of a geometry: 16 doubles, row-major 4x4 matrix M applied to points as
  * M * (x, y, z, 1); the last row must be (0, 0, 0, 1) and the upper 3x3 invertible. Patches
  * and meshes are transformed exactly (control points); spheres need a similarity transform
- * (uniform scale). Default identity. Applied at commit. */
+ * (uniform scale). Default identity. Applied at commit. Errors: INVALID_ARGUMENT (a NaN or
+ * infinite element, a projective last row, a singular 3x3, a non-similarity on a sphere,
+ * the placed geometry beyond the coordinate limit; the scene is unchanged). */
 PPM_API ppm_status ppm_scene_set_geometry_transform(ppm_scene scene, uint32_t geom_id,
                                                     const double matrix[16]);
 
-/* User material id reported in every hit of this geometry (default 0). */
+/* User material id reported in every hit of this geometry (default 0). Any id is accepted
+ * here; a renderer checks that it names a material of the scene (ppm_renderer_create). */
 PPM_API ppm_status ppm_scene_set_geometry_material(ppm_scene scene, uint32_t geom_id,
                                                    uint32_t material_id);
 
-/* Number of primitives of a geometry: patches, triangles, or 1 for a sphere or quad. */
+/* Number of primitives of a geometry: patches, triangles, or 1 for a sphere or quad.
+ * Getters (this one and the three below) may run concurrently with queries and other
+ * getters on the same scene. */
 PPM_API ppm_status ppm_scene_get_primitive_count(ppm_scene scene, uint32_t geom_id,
                                                  size_t *out_count);
 
@@ -210,12 +242,13 @@ PPM_API ppm_status ppm_scene_get_geometry_count(ppm_scene scene, size_t *out_cou
 PPM_API ppm_status ppm_scene_get_bezier_patches(ppm_scene scene, uint32_t geom_id, double *out,
                                                 size_t capacity);
 
-/* Builds the acceleration structure. Required after any change and before queries.
- * Errors: INVALID_OPERATION (empty scene), INVALID_ARGUMENT (every geometry degenerate, so
- * the scene's bounding box is a point). */
+/* Builds the acceleration structure on the context's threads. Required after any change
+ * and before queries. Errors: INVALID_OPERATION (empty scene), INVALID_ARGUMENT (every
+ * geometry degenerate, so the scene's bounding box is a point). */
 PPM_API ppm_status ppm_scene_commit(ppm_scene scene);
 
-/* Axis-aligned bounds of the committed scene (control-point hulls for patches). */
+/* Axis-aligned bounds of the committed scene (control-point hulls for patches).
+ * Errors: INVALID_ARGUMENT (NULL), INVALID_OPERATION (scene not committed). */
 PPM_API ppm_status ppm_scene_get_bounds(ppm_scene scene, double out_lower[3], double out_upper[3]);
 
 /* ---------------------------------------------------------------------------------------- */
@@ -264,7 +297,8 @@ PPM_API ppm_status ppm_scene_occluded(ppm_scene scene, const ppm_ray *rays, size
  * hit the surface at its own origin: the origin is moved off the surface by twice p_error
  * along ng, on the side `dir` points to; tnear = 0, tfar = INFINITY.
  * Real surfaces closer than that bound (about tolerance * diagonal) are not seen.
- * Pure function of its arguments; thread safe. */
+ * Pure function of its arguments; thread safe. Errors: INVALID_ARGUMENT (NULL, dir zero or
+ * not finite, a miss, a hit with a NaN or infinite point, normal or p_error). */
 PPM_API ppm_status ppm_hit_spawn_ray(const ppm_hit *hit, const double dir[3], ppm_ray *out_ray);
 
 /* ---------------------------------------------------------------------------------------- */
@@ -307,7 +341,8 @@ PPM_API ppm_status ppm_tessellate_patches(const double *control_points, size_t p
                                           double tolerance, uint32_t grid, ppm_mesh *out_mesh);
 
 /* Adds / drops a reference (atomic: thread safe). Pointers returned by the getters stay valid
- * until the last reference is released. */
+ * until the last reference is released. Every mesh call fails with INVALID_ARGUMENT for a
+ * NULL mesh (or a NULL output that is not documented as optional). */
 PPM_API ppm_status ppm_mesh_retain(ppm_mesh mesh);
 PPM_API void ppm_mesh_release(ppm_mesh mesh);
 
@@ -348,8 +383,10 @@ PPM_API ppm_status ppm_mesh_get_double(ppm_mesh mesh, const char *key, double *o
  * assigns one to a geometry. A scene without any material renders everything as diffuse grey
  * 0.5; once it has materials, every geometry's id must name one (checked when a renderer is
  * created). Colours are linear RGB; reflectances lie in [0, 1] per channel, indices of
- * refraction are finite and > 0. All opaque materials are two-sided.
- * Errors: INVALID_ARGUMENT naming the bad value. */
+ * refraction are finite and > 0. All opaque materials are two-sided. The id goes to
+ * *out_material_id, which may be NULL. These calls, and those of textures and lights below,
+ * change the scene: the thread rules of Geometry above apply.
+ * Errors: INVALID_ARGUMENT naming the bad value (or the NULL scene or argument). */
 /* Lambertian (Mitsuba `diffuse`, `reflectance`). */
 PPM_API ppm_status ppm_scene_add_diffuse_material(ppm_scene scene, const double reflectance[3],
                                                   uint32_t *out_material_id);
@@ -383,6 +420,9 @@ PPM_API ppm_status ppm_scene_set_material_texture(ppm_scene scene, uint32_t mate
  * finite doubles). Errors: INVALID_ARGUMENT (not a patch geometry, NULL, NaN). */
 PPM_API ppm_status ppm_scene_set_patch_uv_rects(ppm_scene scene, uint32_t geom_id, const double *rects);
 
+/* Lights get ids 0, 1, 2, ... in *out_light_id, which may be NULL. Intensities and radiances
+ * are finite, >= 0 and at most 1e20 per channel; positions obey the coordinate limit.
+ * Errors: INVALID_ARGUMENT naming the bad value. */
 /* Point light (Mitsuba `point`): `intensity` in W/sr per channel, power 4 pi intensity. */
 PPM_API ppm_status ppm_scene_add_point_light(ppm_scene scene, const double position[3],
                                              const double intensity[3], uint32_t *out_light_id);
@@ -409,13 +449,16 @@ typedef struct ppm_renderer_t *ppm_renderer;
  * to_world = look_at(origin, target, up)): `fov` is the full angle in degrees along the
  * image's x axis; image x grows to the right, y down; pixels are square. aperture_radius 0
  * is a pinhole; a thin lens (aperture_radius > 0) focuses on the plane at focus_distance
- * along the view axis. */
+ * along the view axis.
+ * This first camera struct has no size field and cannot grow: it stays for programs built
+ * against it (ppm_renderer_create, ppm_scene_file_get_camera). New code uses ppm_camera_v2,
+ * whose fields mean the same. */
 typedef struct ppm_camera {
     double origin[3];
     double target[3];
     double up[3];
     double fov;             /* degrees, in (0, 180) */
-    uint32_t width, height; /* pixels, at most 2^28 in all */
+    uint32_t width, height; /* pixels, each in 1 .. 2^28 */
     double aperture_radius; /* scene units, >= 0 */
     double focus_distance;  /* scene units, > 0 when aperture_radius > 0 */
     double near_clip;       /* scene units, >= 0: rays start on the plane this far along the
@@ -423,12 +466,59 @@ typedef struct ppm_camera {
                                the lens */
 } ppm_camera;
 
-/* A renderer for a committed scene (kept alive by the renderer) seen through `camera`.
- * Lights, materials and textures are read now; later scene changes do not reach it.
- * Errors: INVALID_OPERATION (scene not committed), INVALID_ARGUMENT (camera, a geometry
- * without a valid material, emission on a kind that cannot emit). */
+/* The camera as a struct that can grow (see "Growth" at the top of this header). Fill it
+ * with ppm_camera_v2_init, which sets `size` and the defaults, then set the fields wanted:
+ *     ppm_camera_v2 camera;
+ *     ppm_camera_v2_init(&camera);
+ *     camera.width = 640; camera.height = 480; ...
+ * The library reads (ppm_renderer_create_v2) or writes (ppm_scene_file_get_camera_v2,
+ * ppm_renderer_get_camera_v2) only the first `size` bytes. A size below that of this first
+ * version is INVALID_ARGUMENT; a larger size from a newer header is accepted when every
+ * byte this library does not know is 0 (a newer field left at its "as before" value), and
+ * is UNSUPPORTED otherwise, naming the first such byte's offset. `reserved` must be 0. */
+typedef struct ppm_camera_v2 {
+    size_t size;            /* sizeof(ppm_camera_v2) as the caller compiled it */
+    double origin[3];       /* default (0, 0, 0) */
+    double target[3];       /* default (0, 0, 1) */
+    double up[3];           /* default (0, 1, 0) */
+    double fov;             /* degrees, in (0, 180); default 45 */
+    uint32_t width, height; /* pixels, each in 1 .. 2^28; no default (0 is refused) */
+    double aperture_radius; /* scene units, >= 0; default 0 (pinhole) */
+    double focus_distance;  /* scene units, > 0 when aperture_radius > 0; default 0 */
+    double near_clip;       /* scene units, >= 0; default 0 (rays start at the lens) */
+    uint64_t reserved[8];   /* room for fields to come without changing size; 0 */
+} ppm_camera_v2;
+
+/* Sets *camera to the defaults above, `size` to sizeof(ppm_camera_v2) and every other byte
+ * to 0. Inline, so that `size` is the struct size of the header the caller compiles with. */
+static inline void ppm_camera_v2_init(ppm_camera_v2 *camera) {
+    unsigned char *bytes = (unsigned char *)camera;
+    size_t i;
+    for (i = 0; i < sizeof *camera; ++i) bytes[i] = 0;
+    camera->size = sizeof *camera;
+    camera->target[2] = 1;
+    camera->up[1] = 1;
+    camera->fov = 45;
+}
+
+/* A renderer for a committed scene seen through `camera`. The caller owns the one reference
+ * returned; the renderer holds one on the scene (and so on its context). Lights, materials
+ * and textures are read now; later scene changes do not reach it. The scene may be queried
+ * meanwhile but not changed. Errors: INVALID_ARGUMENT (NULL, a bad camera field naming it,
+ * a geometry without a valid material, emission on a kind that cannot emit),
+ * INVALID_OPERATION (scene not committed). */
 PPM_API ppm_status ppm_renderer_create(ppm_scene scene, const ppm_camera *camera,
                                        ppm_renderer *out_renderer);
+/* The same from an extensible camera; errors also as described at ppm_camera_v2. */
+PPM_API ppm_status ppm_renderer_create_v2(ppm_scene scene, const ppm_camera_v2 *camera,
+                                          ppm_renderer *out_renderer);
+/* The renderer's camera into *out_camera, whose `size` the caller sets (ppm_camera_v2_init);
+ * the library writes that many bytes (0 beyond the fields it knows) and leaves `size`.
+ * Errors: INVALID_ARGUMENT (NULL, size too small). Thread safe, also during a pass. */
+PPM_API ppm_status ppm_renderer_get_camera_v2(ppm_renderer renderer, ppm_camera_v2 *out_camera);
+/* Adds / drops a reference (atomic: thread safe). Releasing the last reference while a pass
+ * runs, or while another thread still uses the renderer, is the caller's error. The scene is
+ * released with the renderer's last reference. Errors (retain): INVALID_ARGUMENT (NULL). */
 PPM_API ppm_status ppm_renderer_retain(ppm_renderer renderer);
 PPM_API void ppm_renderer_release(ppm_renderer renderer);
 
@@ -443,19 +533,21 @@ PPM_API void ppm_renderer_release(ppm_renderer renderer);
  *   "seed"                  int    random sequence                            default 0
  *   "hit_point_search"      string "grid" (hashed) or "kdtree" (nanoflann)    default "grid"
  *   "direct_lighting"       int    1: light sources by shadow rays; 0: by photons default 1
- * Integer keys also accept set_double with a whole number. mode, seed, direct_lighting and
- * the initial radius settings are fixed after the first pass (INVALID_OPERATION); unknown keys, wrong types and
- * values out of range are INVALID_ARGUMENT. Read-only integers for get_int: "passes",
- * "photons_emitted", "width", "height"; read-only doubles for get_double:
- * "last_eye_pass_seconds", "last_photon_pass_seconds" (wall clock), and
- * "last_search_build_seconds", the part of the eye pass spent building the hit point search. */
+ * Typed settings as described at the top of this header. mode, seed, direct_lighting and
+ * the initial radius settings are fixed after the first pass (INVALID_OPERATION); unknown
+ * keys, wrong types and values out of range are INVALID_ARGUMENT. Read-only ints: "passes",
+ * "photons_emitted", "width", "height"; read-only doubles: "last_eye_pass_seconds",
+ * "last_photon_pass_seconds" (wall clock), and "last_search_build_seconds", the part of the
+ * eye pass spent building the hit point search. Thread safety: not during ppm_render_pass
+ * of the same renderer; getters concurrently with other getters. */
 PPM_API ppm_status ppm_renderer_set_int(ppm_renderer renderer, const char *key, int64_t value);
 PPM_API ppm_status ppm_renderer_set_double(ppm_renderer renderer, const char *key, double value);
 PPM_API ppm_status ppm_renderer_set_string(ppm_renderer renderer, const char *key, const char *value);
 PPM_API ppm_status ppm_renderer_get_int(ppm_renderer renderer, const char *key, int64_t *out_value);
 PPM_API ppm_status ppm_renderer_get_double(ppm_renderer renderer, const char *key, double *out_value);
 /* Writes the string setting into out (NUL-terminated, truncated to capacity) and its full
- * length to *out_length when out_length is not NULL. */
+ * length to *out_length when out_length is not NULL. `out` may be NULL when capacity is 0,
+ * to ask for the length only. */
 PPM_API ppm_status ppm_renderer_get_string(ppm_renderer renderer, const char *key, char *out,
                                            size_t capacity, size_t *out_length);
 
@@ -463,18 +555,22 @@ PPM_API ppm_status ppm_renderer_get_string(ppm_renderer renderer, const char *ke
  * paths), statistics update. Deterministic: the image after n passes depends only on the
  * scene, camera and settings, not on the thread count. Errors: CANCELLED (ppm_renderer_cancel
  * was called before or during the pass; the pass is discarded and the image unchanged),
- * INVALID_OPERATION (another pass of this renderer is running, or the scene was modified). */
+ * INVALID_OPERATION (another pass of this renderer is running, or the scene was modified),
+ * OUT_OF_MEMORY. Different renderers may run passes at once (they share the context's
+ * threads). */
 PPM_API ppm_status ppm_render_pass(ppm_renderer renderer);
 
 /* Stops the running pass as soon as possible, or the next pass if none runs. Thread safe;
- * the only renderer call that may overlap ppm_render_pass besides the readers below. */
+ * the only renderer call that may overlap ppm_render_pass besides the readers below.
+ * Errors: INVALID_ARGUMENT (NULL). */
 PPM_API ppm_status ppm_renderer_cancel(ppm_renderer renderer);
 
 /* Copies an image layer after the last completed pass into `out`, row-major from the
  * top-left pixel: "radiance" (3 floats per pixel: linear RGB radiance, W/(m^2 sr)),
  * "radius" (1 float: gather radius in scene units), "photons" (1 float: the pixel's
  * alpha-reduced photon count N). `count` is the number of floats `out` holds; it must be at
- * least width * height * channels. Thread safe, also during a pass. */
+ * least width * height * channels. Errors: INVALID_ARGUMENT (NULL, unknown layer, count too
+ * small). Thread safe, also during a pass. */
 PPM_API ppm_status ppm_renderer_get_layer(ppm_renderer renderer, const char *layer, float *out,
                                           size_t count);
 
@@ -491,7 +587,8 @@ PPM_API ppm_status ppm_renderer_get_layer(ppm_renderer renderer, const char *lay
  * Errors: IO (cannot write or read `path`), PARSE (not a libppm checkpoint, another version,
  * truncated or corrupt: the message says which), INVALID_ARGUMENT (a checkpoint of another
  * scene, camera or settings: the message names what differs), INVALID_OPERATION (load after
- * a pass has run). */
+ * a pass has run), INVALID_ARGUMENT (NULL). Thread safety: save may overlap a pass and other
+ * readers; load must not overlap any other call on the renderer. */
 PPM_API ppm_status ppm_renderer_save_checkpoint(ppm_renderer renderer, const char *path);
 PPM_API ppm_status ppm_renderer_load_checkpoint(ppm_renderer renderer, const char *path);
 
@@ -506,19 +603,31 @@ typedef struct ppm_scene_file_t *ppm_scene_file;
  * relative to the file's folder. Errors name the file, line, column and key
  * ("scene.json:14:9: bsdfs.glass.int_ior: expected a number > 0"): PARSE for JSON syntax,
  * wrong types, unknown keys and bad values; IO for a missing scene file or a missing file it
- * refers to (textures, OBJ, .bpt). */
+ * refers to (textures, OBJ, .bpt); INVALID_ARGUMENT for a NULL argument. The caller owns the
+ * one reference returned; the file holds one on its scene, which holds one on the context.
+ * Thread safe with respect to other objects of the same context. A loaded file is
+ * immutable: every call below is thread safe. */
 PPM_API ppm_status ppm_scene_file_load(ppm_context context, const char *path, ppm_scene_file *out_file);
+/* Adds / drops a reference (atomic: thread safe). The scene, renderers and references taken
+ * from the file stay valid after its last release. Errors (retain): INVALID_ARGUMENT (NULL). */
 PPM_API ppm_status ppm_scene_file_retain(ppm_scene_file file);
 PPM_API void ppm_scene_file_release(ppm_scene_file file);
 
-/* The file's committed scene, retained for the caller (release it when done). */
+/* The file's committed scene, retained for the caller (release it when done). Changing that
+ * scene changes it for the file's later renderers too. Errors: INVALID_ARGUMENT (NULL). */
 PPM_API ppm_status ppm_scene_file_get_scene(ppm_scene_file file, ppm_scene *out_scene);
-/* The file's camera (`sensor`) with its film size. */
+/* The file's camera (`sensor`) with its film size. Errors: INVALID_ARGUMENT (NULL). */
 PPM_API ppm_status ppm_scene_file_get_camera(ppm_scene_file file, ppm_camera *out_camera);
-/* A renderer for the file's scene and camera with the file's `integrator` settings applied. */
+/* The same into an extensible camera: `size` set by the caller as described at
+ * ppm_renderer_get_camera_v2. Errors: INVALID_ARGUMENT (NULL, size too small). */
+PPM_API ppm_status ppm_scene_file_get_camera_v2(ppm_scene_file file, ppm_camera_v2 *out_camera);
+/* A renderer for the file's scene and camera with the file's `integrator` settings applied;
+ * the caller owns the one reference returned. Errors: as ppm_renderer_create (for example
+ * INVALID_OPERATION when the file's scene was changed and not committed again). */
 PPM_API ppm_status ppm_scene_file_create_renderer(ppm_scene_file file, ppm_renderer *out_renderer);
-/* Read-only values of the file: "passes" (int, integrator.passes, 0 when not given) and
- * "time" (double, integrator.time in seconds, 0 when not given). */
+/* Read-only values of the file (typed settings: see the top of this header): "passes" (int,
+ * integrator.passes, 0 when not given) and "time" (double, integrator.time in seconds, 0
+ * when not given). Errors: INVALID_ARGUMENT (NULL, unknown key, wrong type). */
 PPM_API ppm_status ppm_scene_file_get_int(ppm_scene_file file, const char *key, int64_t *out_value);
 PPM_API ppm_status ppm_scene_file_get_double(ppm_scene_file file, const char *key, double *out_value);
 

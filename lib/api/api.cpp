@@ -15,6 +15,7 @@
 #include "io/obj_reader.h"
 #include "scene/scene.h"
 #include "scene/spawn.h"
+#include "api/api_keys.h"
 #include "api/api_support.h"
 
 #include <cstring>
@@ -67,9 +68,20 @@ template <class Make> ppm_status add_geometry(ppm_scene scene, uint32_t *out_geo
     });
 }
 
-[[noreturn]] void unknown_scene_setting(const char *key) {
-    invalid_argument(std::string("unknown scene setting '") + key + "' (known: tolerance, patch_presplit)");
+constexpr Key kContextKeyList[] = {{"threads", KeyType::Int}};
+constexpr KeyTable kContextKeys("context setting", kContextKeyList);
+
+constexpr Key kSceneKeyList[] = {{"tolerance", KeyType::Double}, {"patch_presplit", KeyType::Int}};
+constexpr KeyTable kSceneKeys("scene setting", kSceneKeyList);
+
+void set_context_int(ppm_context context, const char *key, int64_t value) {
+    kContextKeys.find(key); // "threads" is the only key
+    if (value < 0 || value > 1024)
+        invalid_argument("threads must be 0 (all hardware threads) or 1..1024, not " + std::to_string(value));
+    context->set_threads(static_cast<int>(value));
 }
+
+bool is_key(const char *key, const char *name) { return std::strcmp(key, name) == 0; }
 
 } // namespace
 
@@ -123,24 +135,32 @@ void ppm_context_release(ppm_context context) {
 ppm_status ppm_context_set_int(ppm_context context, const char *key, int64_t value) {
     return guarded(context, [&] {
         require(context, "context");
-        require_key(key);
-        if (std::strcmp(key, "threads") == 0) {
-            if (value < 0 || value > 1024)
-                invalid_argument("threads must be 0 (all hardware threads) or 1..1024, not " + std::to_string(value));
-            context->set_threads(static_cast<int>(value));
-        } else {
-            invalid_argument(std::string("unknown context setting '") + key + "' (known: threads)");
-        }
+        set_context_int(context, key, value);
+    });
+}
+
+ppm_status ppm_context_set_double(ppm_context context, const char *key, double value) {
+    return guarded(context, [&] {
+        require(context, "context");
+        kContextKeys.find(key);
+        set_context_int(context, key, kContextKeys.whole_number(key, value));
     });
 }
 
 ppm_status ppm_context_get_int(ppm_context context, const char *key, int64_t *out_value) {
     return guarded(context, [&] {
         require(context, "context");
-        require_key(key);
+        kContextKeys.require_int(key);
         require(out_value, "out_value");
-        if (std::strcmp(key, "threads") != 0)
-            invalid_argument(std::string("unknown context setting '") + key + "' (known: threads)");
+        *out_value = context->threads();
+    });
+}
+
+ppm_status ppm_context_get_double(ppm_context context, const char *key, double *out_value) {
+    return guarded(context, [&] {
+        require(context, "context");
+        kContextKeys.find(key);
+        require(out_value, "out_value");
         *out_value = context->threads();
     });
 }
@@ -170,28 +190,40 @@ void ppm_scene_release(ppm_scene scene) {
     if (scene) scene->release();
 }
 
+ppm_status ppm_scene_set_int(ppm_scene scene, const char *key, int64_t value) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        kSceneKeys.find(key);
+        if (is_key(key, "tolerance"))
+            s.set_tolerance(static_cast<double>(value));
+        else
+            s.set_patch_presplit(static_cast<double>(value));
+    });
+}
+
+ppm_status ppm_scene_get_int(ppm_scene scene, const char *key, int64_t *out_value) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        kSceneKeys.require_int(key); // "patch_presplit" is the only integer key
+        require(out_value, "out_value");
+        *out_value = s.patch_presplit();
+    });
+}
+
+// patch_presplit keeps its own check of a fractional double, whose message names its range.
 ppm_status ppm_scene_set_double(ppm_scene scene, const char *key, double value) {
     return scene_call(scene, [&](ppm::Scene &s) {
-        require_key(key);
-        if (std::strcmp(key, "tolerance") == 0)
+        kSceneKeys.find(key);
+        if (is_key(key, "tolerance"))
             s.set_tolerance(value);
-        else if (std::strcmp(key, "patch_presplit") == 0)
-            s.set_patch_presplit(value);
         else
-            unknown_scene_setting(key);
+            s.set_patch_presplit(value);
     });
 }
 
 ppm_status ppm_scene_get_double(ppm_scene scene, const char *key, double *out_value) {
     return scene_call(scene, [&](ppm::Scene &s) {
-        require_key(key);
+        kSceneKeys.find(key);
         require(out_value, "out_value");
-        if (std::strcmp(key, "tolerance") == 0)
-            *out_value = s.tolerance();
-        else if (std::strcmp(key, "patch_presplit") == 0)
-            *out_value = s.patch_presplit();
-        else
-            unknown_scene_setting(key);
+        *out_value = is_key(key, "tolerance") ? s.tolerance() : s.patch_presplit();
     });
 }
 

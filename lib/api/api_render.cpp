@@ -5,6 +5,7 @@
 #include "geometry/patch_geometry.h"
 #include "geometry/quad_geometry.h"
 #include "geometry/sphere_geometry.h"
+#include "api/api_camera.h"
 #include "api/api_renderer.h"
 
 #include <cmath>
@@ -45,21 +46,31 @@ template <class Make> ppm_status add_material(ppm_scene scene, uint32_t *out_id,
     });
 }
 
-ppm::CameraSettings read_camera(const ppm_camera *camera) {
-    require(camera, "camera");
-    ppm::CameraSettings c;
-    c.origin = finite_point(camera->origin, "camera origin");
-    c.target = finite_point(camera->target, "camera target");
-    c.up = finite_point(camera->up, "camera up");
-    c.fov = camera->fov;
-    if (camera->width > (1u << 28) || camera->height > (1u << 28))
-        invalid_argument("camera width and height must be at most 2^28");
-    c.width = static_cast<int>(camera->width);
-    c.height = static_cast<int>(camera->height);
-    c.aperture_radius = camera->aperture_radius;
-    c.focus_distance = camera->focus_distance;
-    c.near_clip = camera->near_clip;
-    return c;
+// The renderer's read-only values (its settings are RenderSettings' keys): true and the value
+// in *out when `key` is one of the type asked for.
+bool read_only_int(const ppm::Renderer &r, const std::string &key, int64_t *out) {
+    if (key == "passes") *out = static_cast<int64_t>(r.passes());
+    else if (key == "photons_emitted") *out = static_cast<int64_t>(r.photons_emitted());
+    else if (key == "width") *out = r.width();
+    else if (key == "height") *out = r.height();
+    else return false;
+    return true;
+}
+
+bool read_only_double(const ppm::Renderer &r, const std::string &key, double *out) {
+    if (key == "last_eye_pass_seconds") *out = r.last_eye_seconds();
+    else if (key == "last_photon_pass_seconds") *out = r.last_photon_seconds();
+    else if (key == "last_search_build_seconds") *out = r.last_search_build_seconds();
+    else return false;
+    return true;
+}
+
+void refuse_read_only(const ppm::Renderer &r, const char *key) {
+    require_key(key);
+    int64_t i = 0;
+    double d = 0;
+    if (read_only_int(r, key, &i) || read_only_double(r, key, &d))
+        invalid_argument(std::string("render value '") + key + "' is read-only");
 }
 
 } // namespace
@@ -158,8 +169,19 @@ ppm_status ppm_scene_set_geometry_emission(ppm_scene scene, uint32_t geom_id, co
 ppm_status ppm_renderer_create(ppm_scene scene, const ppm_camera *camera, ppm_renderer *out_renderer) {
     return scene_call(scene, [&](ppm::Scene &s) {
         require(out_renderer, "out_renderer");
-        *out_renderer = new ppm_renderer_t(s, read_camera(camera));
+        *out_renderer = new ppm_renderer_t(s, camera_settings(camera));
     });
+}
+
+ppm_status ppm_renderer_create_v2(ppm_scene scene, const ppm_camera_v2 *camera, ppm_renderer *out_renderer) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        require(out_renderer, "out_renderer");
+        *out_renderer = new ppm_renderer_t(s, camera_settings(camera));
+    });
+}
+
+ppm_status ppm_renderer_get_camera_v2(ppm_renderer renderer, ppm_camera_v2 *out_camera) {
+    return renderer_call(renderer, [&](ppm::Renderer &) { write_camera(renderer->camera, out_camera); });
 }
 
 ppm_status ppm_renderer_retain(ppm_renderer renderer) {
@@ -172,21 +194,21 @@ void ppm_renderer_release(ppm_renderer renderer) {
 
 ppm_status ppm_renderer_set_int(ppm_renderer renderer, const char *key, int64_t value) {
     return renderer_call(renderer, [&](ppm::Renderer &r) {
-        require_key(key);
+        refuse_read_only(r, key);
         r.settings().set_int(key, value, r.started());
     });
 }
 
 ppm_status ppm_renderer_set_double(ppm_renderer renderer, const char *key, double value) {
     return renderer_call(renderer, [&](ppm::Renderer &r) {
-        require_key(key);
+        refuse_read_only(r, key);
         r.settings().set_double(key, value, r.started());
     });
 }
 
 ppm_status ppm_renderer_set_string(ppm_renderer renderer, const char *key, const char *value) {
     return renderer_call(renderer, [&](ppm::Renderer &r) {
-        require_key(key);
+        refuse_read_only(r, key);
         require(value, "value");
         r.settings().set_string(key, value, r.started());
     });
@@ -196,12 +218,10 @@ ppm_status ppm_renderer_get_int(ppm_renderer renderer, const char *key, int64_t 
     return renderer_call(renderer, [&](ppm::Renderer &r) {
         require_key(key);
         require(out_value, "out_value");
-        const std::string k = key;
-        if (k == "passes") *out_value = static_cast<int64_t>(r.passes());
-        else if (k == "photons_emitted") *out_value = static_cast<int64_t>(r.photons_emitted());
-        else if (k == "width") *out_value = r.width();
-        else if (k == "height") *out_value = r.height();
-        else *out_value = r.settings().get_int(k);
+        double seconds = 0;
+        if (read_only_double(r, key, &seconds))
+            invalid_argument(std::string("render value '") + key + "' is a double, not an integer: read it as a double");
+        if (!read_only_int(r, key, out_value)) *out_value = r.settings().get_int(key);
     });
 }
 
@@ -209,11 +229,9 @@ ppm_status ppm_renderer_get_double(ppm_renderer renderer, const char *key, doubl
     return renderer_call(renderer, [&](ppm::Renderer &r) {
         require_key(key);
         require(out_value, "out_value");
-        const std::string k = key;
-        if (k == "last_eye_pass_seconds") *out_value = r.last_eye_seconds();
-        else if (k == "last_photon_pass_seconds") *out_value = r.last_photon_seconds();
-        else if (k == "last_search_build_seconds") *out_value = r.last_search_build_seconds();
-        else *out_value = r.settings().get_double(k);
+        int64_t count = 0;
+        if (read_only_int(r, key, &count)) *out_value = static_cast<double>(count);
+        else if (!read_only_double(r, key, out_value)) *out_value = r.settings().get_double(key);
     });
 }
 

@@ -5,7 +5,12 @@
 #include "render/renderer.h"
 
 struct ppm_renderer_t : ppm::Renderer {
-    using Renderer::Renderer;
+    ppm_renderer_t(ppm::Scene &scene, const ppm::CameraSettings &camera_settings)
+        : Renderer(scene, camera_settings), camera(camera_settings) {}
+
+    // The camera as given, for ppm_renderer_get_camera_v2; never changes, so it may be read
+    // during a pass.
+    const ppm::CameraSettings camera;
 };
 
 namespace ppm::api {

@@ -1,8 +1,12 @@
 // The C ABI of scene files.
 #include <ppm/ppm.h>
 
+#include "api/api_camera.h"
+#include "api/api_keys.h"
 #include "api/api_renderer.h"
 #include "scenefile/scene_file.h"
+
+#include <cstring>
 
 struct ppm_scene_file_t : ppm::SceneFile {
     using SceneFile::SceneFile;
@@ -11,6 +15,9 @@ struct ppm_scene_file_t : ppm::SceneFile {
 namespace {
 
 using namespace ppm::api;
+
+constexpr Key kFileKeyList[] = {{"passes", KeyType::Int}, {"time", KeyType::Double}};
+constexpr KeyTable kFileKeys("scene file value", kFileKeyList);
 
 template <class Body> ppm_status file_call(ppm_scene_file file, Body &&body) noexcept {
     if (!file) return guarded(nullptr, [] { ppm::invalid_argument("scene file is NULL"); });
@@ -53,6 +60,10 @@ ppm_status ppm_scene_file_get_camera(ppm_scene_file file, ppm_camera *out_camera
     });
 }
 
+ppm_status ppm_scene_file_get_camera_v2(ppm_scene_file file, ppm_camera_v2 *out_camera) {
+    return file_call(file, [&](ppm::SceneFile &f) { write_camera(camera_settings(&f.camera()), out_camera); });
+}
+
 ppm_status ppm_scene_file_create_renderer(ppm_scene_file file, ppm_renderer *out_renderer) {
     return file_call(file, [&](ppm::SceneFile &f) {
         require(out_renderer, "out_renderer");
@@ -66,21 +77,17 @@ ppm_status ppm_scene_file_create_renderer(ppm_scene_file file, ppm_renderer *out
 
 ppm_status ppm_scene_file_get_int(ppm_scene_file file, const char *key, int64_t *out_value) {
     return file_call(file, [&](ppm::SceneFile &f) {
-        require_key(key);
+        kFileKeys.require_int(key); // "passes" is the only integer key
         require(out_value, "out_value");
-        if (std::string(key) != "passes")
-            ppm::invalid_argument("unknown integer key '" + std::string(key) + "' of a scene file (keys: passes)");
         *out_value = f.passes();
     });
 }
 
 ppm_status ppm_scene_file_get_double(ppm_scene_file file, const char *key, double *out_value) {
     return file_call(file, [&](ppm::SceneFile &f) {
-        require_key(key);
+        kFileKeys.find(key);
         require(out_value, "out_value");
-        if (std::string(key) != "time")
-            ppm::invalid_argument("unknown double key '" + std::string(key) + "' of a scene file (keys: time)");
-        *out_value = f.time_budget();
+        *out_value = std::strcmp(key, "time") == 0 ? f.time_budget() : static_cast<double>(f.passes());
     });
 }
 

@@ -13,7 +13,20 @@ const char *const kKeys =
     "mode, photons_per_pass, alpha, initial_radius, initial_radius_pixels, max_depth, seed, "
     "hit_point_search, direct_lighting";
 
+// The type of a known key with its article, or nullptr.
+const char *type_of(const std::string &key) {
+    if (key == "mode" || key == "hit_point_search") return "a string";
+    if (key == "alpha" || key == "initial_radius" || key == "initial_radius_pixels") return "a number";
+    if (key == "photons_per_pass" || key == "max_depth" || key == "seed" || key == "direct_lighting")
+        return "an integer";
+    return nullptr;
+}
+
+// `key` asked for as `type`: either it does not exist or it has another type.
 [[noreturn]] void unknown(const std::string &key, const char *type) {
+    if (const char *actual = type_of(key))
+        invalid_argument("unknown " + std::string(type) + " render setting '" + key + "': '" + key + "' is " + actual +
+                         " setting");
     invalid_argument("unknown " + std::string(type) + " render setting '" + key + "' (settings: " +
                      kKeys + ")");
 }

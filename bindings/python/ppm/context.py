@@ -1,4 +1,6 @@
 """The root object: worker threads, Embree device."""
+import numbers
+
 from . import _core
 from ._handle import Handle
 
@@ -32,11 +34,17 @@ class Context(Handle):
         self._core_object.set_int("threads", int(value))
 
     def set(self, key, value):
-        """Sets an integer setting of ``ppm_context_set_int`` by name."""
-        self._core_object.set_int(key, int(value))
+        """Sets a setting by name: an int goes to ``ppm_context_set_int``, a float to
+        ``ppm_context_set_double`` (a whole float for the integer ``threads``)."""
+        if isinstance(value, bool) or not isinstance(value, numbers.Real):
+            raise TypeError(f"context setting {key!r}: expected int or float, got {type(value).__name__}")
+        if isinstance(value, numbers.Integral):
+            self._core_object.set_int(key, int(value))
+        else:
+            self._core_object.set_double(key, float(value))
 
     def get(self, key):
-        """An integer setting by name."""
+        """An integer setting by name (``threads``)."""
         return self._core_object.get_int(key)
 
 

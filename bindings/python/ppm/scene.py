@@ -1,10 +1,12 @@
 """Scenes: geometry, materials, textures, lights; commit; ray queries."""
+import numbers
 import os
 
 import numpy as np
 
 from . import _core, _rays
 from ._arrays import color, index_array, real_array, uint32, vector
+from ._errors import InvalidArgumentError
 from ._handle import Handle
 from .context import resolve
 
@@ -55,13 +57,36 @@ class Scene(Handle):
     def tolerance(self, value):
         self._core_object.set_double("tolerance", float(value))
 
+    @property
+    def patch_presplit(self):
+        """Sub-patches per patch edge (an int in [1, 32], default 12): memory against ray
+        speed, see ppm.h; takes effect at commit."""
+        return self._core_object.get_int("patch_presplit")
+
+    @patch_presplit.setter
+    def patch_presplit(self, value):
+        if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+            raise TypeError(f"patch_presplit: expected an int, got {type(value).__name__}")
+        self._core_object.set_int("patch_presplit", int(value))
+
     def set(self, key, value):
-        """Sets a floating-point setting of ``ppm_scene_set_double`` by name."""
-        self._core_object.set_double(key, float(value))
+        """Sets a setting by name: an int goes to ``ppm_scene_set_int``, a float to
+        ``ppm_scene_set_double`` (whole floats are accepted for integer settings)."""
+        if isinstance(value, bool) or not isinstance(value, numbers.Real):
+            raise TypeError(f"scene setting {key!r}: expected int or float, got {type(value).__name__}")
+        if isinstance(value, numbers.Integral):
+            self._core_object.set_int(key, int(value))
+        else:
+            self._core_object.set_double(key, float(value))
 
     def get(self, key):
-        """A floating-point setting by name."""
-        return self._core_object.get_double(key)
+        """A setting by name, as the C API types it: ``patch_presplit`` an int,
+        ``tolerance`` a float."""
+        # One getter per type and no "type of key" query: get_int refuses a double key.
+        try:
+            return self._core_object.get_int(key)
+        except InvalidArgumentError:
+            return self._core_object.get_double(key)
 
     # -- geometry -------------------------------------------------------------------------
     def _with_material(self, geom_id, material):

@@ -22,6 +22,14 @@ void bind_context(nb::module_ &m) {
         check(ppm_context_get_int(c.get(), key.c_str(), &value));
         return value;
     });
+    cls.def("set_double", [](Context &c, const std::string &key, double value) {
+        check(ppm_context_set_double(c.get(), key.c_str(), value));
+    });
+    cls.def("get_double", [](Context &c, const std::string &key) {
+        double value = 0;
+        check(ppm_context_get_double(c.get(), key.c_str(), &value));
+        return value;
+    });
 }
 
 } // namespace ppm_py

@@ -14,9 +14,9 @@ namespace ppm_py {
 void bind_renderer(nb::module_ &m) {
     nb::class_<Renderer> cls(m, "Renderer");
     cls.def("__init__", [](Renderer *self, Scene &scene, const CameraTuple &camera) {
-        const ppm_camera c = to_camera(camera);
+        const ppm_camera_v2 c = to_camera(camera);
         ppm_renderer renderer = nullptr;
-        check(ppm_renderer_create(scene.get(), &c, &renderer));
+        check(ppm_renderer_create_v2(scene.get(), &c, &renderer));
         new (self) Renderer(renderer, "Renderer");
     });
     def_close(cls);

@@ -38,6 +38,14 @@ void bind_scene(nb::module_ &m) {
     });
     def_close(cls);
 
+    cls.def("set_int", [](Scene &s, const std::string &key, int64_t value) {
+        check(ppm_scene_set_int(s.get(), key.c_str(), value));
+    });
+    cls.def("get_int", [](Scene &s, const std::string &key) {
+        int64_t value = 0;
+        check(ppm_scene_get_int(s.get(), key.c_str(), &value));
+        return value;
+    });
     cls.def("set_double", [](Scene &s, const std::string &key, double value) {
         check(ppm_scene_set_double(s.get(), key.c_str(), value));
     });

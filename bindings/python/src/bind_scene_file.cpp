@@ -42,8 +42,9 @@ void bind_scene_file(nb::module_ &m) {
         return new Scene(scene, "Scene");
     });
     cls.def("get_camera", [](SceneFile &f) {
-        ppm_camera camera;
-        check(ppm_scene_file_get_camera(f.get(), &camera));
+        ppm_camera_v2 camera;
+        ppm_camera_v2_init(&camera);
+        check(ppm_scene_file_get_camera_v2(f.get(), &camera));
         return from_camera(camera);
     });
     cls.def("create_renderer", [](SceneFile &f) {

@@ -1,4 +1,4 @@
-// ppm_camera as it crosses to Python: a tuple (origin, target, up, fov, width, height,
+// ppm_camera_v2 as it crosses to Python: a tuple (origin, target, up, fov, width, height,
 // aperture_radius, focus_distance, near_clip), which ppm/camera.py turns into ppm.Camera.
 #pragma once
 
@@ -17,9 +17,9 @@ namespace ppm_py {
 using Vec3 = std::array<double, 3>;
 using CameraTuple = std::tuple<Vec3, Vec3, Vec3, double, uint32_t, uint32_t, double, double, double>;
 
-inline ppm_camera to_camera(const CameraTuple &t) {
-    ppm_camera c;
-    std::memset(&c, 0, sizeof c);
+inline ppm_camera_v2 to_camera(const CameraTuple &t) {
+    ppm_camera_v2 c;
+    ppm_camera_v2_init(&c);
     std::memcpy(c.origin, std::get<0>(t).data(), sizeof c.origin);
     std::memcpy(c.target, std::get<1>(t).data(), sizeof c.target);
     std::memcpy(c.up, std::get<2>(t).data(), sizeof c.up);
@@ -32,7 +32,7 @@ inline ppm_camera to_camera(const CameraTuple &t) {
     return c;
 }
 
-inline CameraTuple from_camera(const ppm_camera &c) {
+inline CameraTuple from_camera(const ppm_camera_v2 &c) {
     return {Vec3{c.origin[0], c.origin[1], c.origin[2]}, Vec3{c.target[0], c.target[1], c.target[2]},
             Vec3{c.up[0], c.up[1], c.up[2]}, c.fov, c.width, c.height, c.aperture_radius, c.focus_distance,
             c.near_clip};
