@@ -11,18 +11,19 @@
 #    find_package(ppm) and with pkg-config.
 # 4. Python: pip-installs bindings/python against that prefix into a temporary venv and runs
 #    its pytest tests (each test counts in the summary; a failed pip install counts as one).
-# 5. With --tsan only: scripts/tsan.sh, the ThreadSanitizer build in build-tsan/ and the tests
-#    labelled "threads" under it, every report fatal (counts as one check).
+# 5. scripts/tsan.sh: the ThreadSanitizer build in build-tsan/ and the tests labelled
+#    "threads" under it, every report fatal (counts as one check); --no-tsan skips it.
 # Exits non-zero if anything failed; the last line sums up ctest tests and package checks.
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 cd "$PPM_ROOT"
 
-run_tsan=0
+run_tsan=1
 for arg in "$@"; do
   case "$arg" in
   --tsan) run_tsan=1 ;;
-  *) ppm_die "unknown option '$arg' (usage: bash scripts/test.sh [--tsan])" ;;
+  --no-tsan) run_tsan=0 ;;
+  *) ppm_die "unknown option '$arg' (usage: bash scripts/test.sh [--no-tsan])" ;;
   esac
 done
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # ThreadSanitizer run of the tests labelled "threads". Assumes scripts/setup.sh has run.
 #
-#   bash scripts/tsan.sh          (also run by: bash scripts/test.sh --tsan)
+#   bash scripts/tsan.sh          (also run by bash scripts/test.sh, unless --no-tsan)
 #
 # 1. Once: builds libtbb from Debian's source of the installed libtbb12 (same version, so the
 #    headers in /usr/include match) with -fsanitize=thread into build-tsan/tbb/. TSan sees a
