@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <memory>
 
 namespace ppm {
 
@@ -33,9 +35,45 @@ bool is_srgb_encoded(const OIIO::ImageSpec &spec) {
            base != OIIO::TypeDesc::DOUBLE;
 }
 
+// OpenImageIO 2.4's PNG reader, on a file that ends early, lets libpng print "libpng error:
+// ... hit end of file" on stderr and leaks the message (its read callback holds a std::string
+// across libpng's longjmp). So a PNG is walked chunk by chunk first: every chunk up to IEND
+// must lie inside the file, and then libpng never reads past its end. Other formats, and
+// PNGs with bad content, are left to OpenImageIO.
+void check_png_is_complete(const std::string &path) {
+    std::unique_ptr<std::FILE, int (*)(std::FILE *)> file(std::fopen(path.c_str(), "rb"), std::fclose);
+    if (!file) return; // OpenImageIO names the problem
+    unsigned char header[8];
+    if (std::fread(header, 1, sizeof header, file.get()) != sizeof header ||
+        std::memcmp(header, "\x89PNG\r\n\x1a\n", sizeof header) != 0 || std::fseek(file.get(), 0, SEEK_END) != 0)
+        return;
+    const long long size = std::ftell(file.get());
+    const auto truncated = [&](const std::string &what) {
+        fail(PPM_ERROR_IO, "texture '" + path + "' is a truncated PNG: " + what + ", the file ends at byte " +
+                               std::to_string(size));
+    };
+    for (long long offset = 8;;) {
+        if (offset + 8 > size || std::fseek(file.get(), static_cast<long>(offset), SEEK_SET) != 0 ||
+            std::fread(header, 1, sizeof header, file.get()) != sizeof header)
+            truncated("no IEND chunk");
+        const long long length = static_cast<long long>(header[0]) << 24 | header[1] << 16 | header[2] << 8 | header[3];
+        const std::string type(reinterpret_cast<const char *>(header + 4), 4);
+        const bool named = std::all_of(type.begin(), type.end(),
+                                       [](char c) { return std::isalpha(static_cast<unsigned char>(c)); });
+        // Length, type, data and CRC.
+        const long long end = offset + 12 + length;
+        if (end > size)
+            truncated("the chunk " + (named ? type + " " : std::string()) + "at byte " + std::to_string(offset) +
+                      " runs to byte " + std::to_string(end));
+        if (type == "IEND") return;
+        offset = end;
+    }
+}
+
 } // namespace
 
 std::shared_ptr<const Texture> Texture::load(const std::string &path) {
+    check_png_is_complete(path);
     auto input = OIIO::ImageInput::open(path);
     if (!input) fail(PPM_ERROR_IO, "texture '" + path + "': " + OIIO::geterror());
     const OIIO::ImageSpec &spec = input->spec();

@@ -165,7 +165,8 @@ void expect_located_error(ppm_status status, std::initializer_list<ppm_status> a
     if (verbose) std::fprintf(stderr, "%s: %s: %s\n", call, ppm_status_string(status), ppm_last_error_message());
     bool listed = false;
     for (ppm_status s : allowed) listed = listed || s == status;
-    if (!listed) die(std::string(call) + " returned " + ppm_status_string(status) + ", which its documentation does not list");
+    if (!listed)
+        die(std::string(call) + " returned " + ppm_status_string(status) + ", which its documentation does not list");
     if (std::strstr(ppm_last_error_message(), file_name.c_str()) == nullptr)
         die(std::string(call) + " failed with a message that does not name the file " + file_name);
 }
