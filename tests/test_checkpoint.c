@@ -4,6 +4,8 @@
 
 #include "test_support.h"
 
+#include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -198,12 +200,126 @@ static void test_bad_checkpoints_are_refused(void **state) {
     ppm_renderer_release(w);
 }
 
+/* Crafted checkpoints: the checksum only proves that a file is as written, so a file whose
+ * checksum was recomputed after an edit must still be refused when its numbers could not
+ * have come from a render. Layout: 96 header bytes (passes at 72, photons emitted at 80, slot
+ * count at 88), then one u32 pixel per slot, then 8 doubles per slot (N, R^2, tau rgb, direct
+ * rgb), then the FNV-1a hash of everything before it. */
+enum { header_bytes = 96, passes_at = 72, emitted_at = 80, slots_at = 88 };
+
+static unsigned char *read_all(const char *path, size_t *size) {
+    FILE *file = fopen(path, "rb");
+    assert_non_null(file);
+    fseek(file, 0, SEEK_END);
+    *size = (size_t)ftell(file);
+    fseek(file, 0, SEEK_SET);
+    unsigned char *bytes = malloc(*size);
+    assert_non_null(bytes);
+    assert_int_equal(fread(bytes, 1, *size, file), *size);
+    fclose(file);
+    return bytes;
+}
+
+/* Writes the first `size` bytes of `bytes` and their FNV-1a hash to `path`. */
+static void write_with_checksum(const char *path, const unsigned char *bytes, size_t size) {
+    uint64_t hash = 14695981039346656037ull;
+    for (size_t i = 0; i < size; ++i) hash = (hash ^ bytes[i]) * 1099511628211ull;
+    FILE *file = fopen(path, "wb");
+    assert_non_null(file);
+    assert_int_equal(fwrite(bytes, 1, size, file), size);
+    assert_int_equal(fwrite(&hash, sizeof hash, 1, file), 1);
+    fclose(file);
+}
+
+/* The saved checkpoint with one double of slot `slot`'s statistics (field 0..7) replaced. */
+static void craft_statistic(fixture *f, const char *out, size_t slot, int field, double value) {
+    size_t size;
+    unsigned char *bytes = read_all(f->path, &size);
+    uint64_t slots;
+    memcpy(&slots, bytes + slots_at, sizeof slots);
+    assert_true(slot < slots);
+    const size_t at = header_bytes + slots * 4 + (slot * 8 + (size_t)field) * sizeof(double);
+    memcpy(bytes + at, &value, sizeof value);
+    write_with_checksum(out, bytes, size - 8);
+    free(bytes);
+}
+
+/* The saved header with its counts replaced and no statistics. */
+static void craft_counts(fixture *f, const char *out, uint64_t passes, uint64_t emitted) {
+    size_t size;
+    unsigned char *bytes = read_all(f->path, &size);
+    const uint64_t no_slots = 0;
+    memcpy(bytes + passes_at, &passes, sizeof passes);
+    memcpy(bytes + emitted_at, &emitted, sizeof emitted);
+    memcpy(bytes + slots_at, &no_slots, sizeof no_slots);
+    write_with_checksum(out, bytes, header_bytes);
+    free(bytes);
+}
+
+static void test_implausible_statistics_are_refused(void **state) {
+    fixture *f = *state;
+    ppm_renderer r = new_renderer(f, "sppm");
+    run_passes(r, 2);
+    assert_int_equal(ppm_renderer_save_checkpoint(r, f->path), PPM_OK);
+    ppm_renderer_release(r);
+
+    char crafted[320];
+    snprintf(crafted, sizeof crafted, "%s/crafted.ppmckpt", f->folder);
+    /* The untouched statistics re-hashed load: the crafting itself is right. */
+    size_t size;
+    unsigned char *bytes = read_all(f->path, &size);
+    write_with_checksum(crafted, bytes, size - 8);
+    free(bytes);
+    ppm_renderer fine = new_renderer(f, "sppm");
+    assert_int_equal(ppm_renderer_load_checkpoint(fine, crafted), PPM_OK);
+    ppm_renderer_release(fine);
+
+    const size_t slot = 64 * 24 + 32; /* a pixel in the middle of the image */
+    craft_statistic(f, crafted, slot, 0, NAN);
+    expect_load_error(f, crafted, PPM_ERROR_PARSE, "pixel slot 1568: photon count N = nan");
+    craft_statistic(f, crafted, slot, 0, -1);
+    expect_load_error(f, crafted, PPM_ERROR_PARSE, "photon count N = -1");
+    craft_statistic(f, crafted, slot, 0, 1e300);
+    expect_load_error(f, crafted, PPM_ERROR_PARSE, "photon count N = 1.0000000000000001e+300 (must lie in [0, photons emitted x 1000])");
+    craft_statistic(f, crafted, slot, 1, -0.5);
+    expect_load_error(f, crafted, PPM_ERROR_PARSE, "radius squared = -0.5");
+    craft_statistic(f, crafted, slot, 1, 1e300);
+    expect_load_error(f, crafted, PPM_ERROR_PARSE, "radius squared = 1.0000000000000001e+300");
+    craft_statistic(f, crafted, slot, 1, INFINITY);
+    expect_load_error(f, crafted, PPM_ERROR_PARSE, "radius squared = inf");
+    craft_statistic(f, crafted, slot, 3, NAN);
+    expect_load_error(f, crafted, PPM_ERROR_PARSE, "flux tau = nan");
+    craft_statistic(f, crafted, slot, 2, 1e300);
+    expect_load_error(f, crafted, PPM_ERROR_PARSE, "radiance");
+    craft_statistic(f, crafted, slot, 7, -2);
+    expect_load_error(f, crafted, PPM_ERROR_PARSE, "direct light = -2");
+    craft_statistic(f, crafted, slot, 5, 1e300);
+    expect_load_error(f, crafted, PPM_ERROR_PARSE, "radiance");
+}
+
+static void test_counts_that_disagree_are_refused(void **state) {
+    fixture *f = *state;
+    ppm_renderer r = new_renderer(f, "sppm");
+    run_passes(r, 1);
+    assert_int_equal(ppm_renderer_save_checkpoint(r, f->path), PPM_OK);
+    ppm_renderer_release(r);
+    char crafted[320];
+    snprintf(crafted, sizeof crafted, "%s/crafted.ppmckpt", f->folder);
+    /* Passes without statistics were once loaded and their counts silently dropped. */
+    craft_counts(f, crafted, 3, 15000);
+    expect_load_error(f, crafted, PPM_ERROR_PARSE, "3 passes recorded but no pixel statistics");
+    craft_counts(f, crafted, 0, 5000);
+    expect_load_error(f, crafted, PPM_ERROR_PARSE, "no pass recorded, but 5000 photons emitted");
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_resume_equals_uninterrupted_sppm, setup, teardown),
         cmocka_unit_test_setup_teardown(test_resume_equals_uninterrupted_ppm, setup, teardown),
         cmocka_unit_test_setup_teardown(test_checkpoint_before_any_pass, setup, teardown),
         cmocka_unit_test_setup_teardown(test_bad_checkpoints_are_refused, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_implausible_statistics_are_refused, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_counts_that_disagree_are_refused, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

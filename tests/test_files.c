@@ -658,6 +658,57 @@ static void test_obj_load_after_failed_load_gets_id_zero(void **state) {
     check_loads(f, obj_file(f, "good.obj", "f 1 2 3\n"), 1, 1);
 }
 
+/* A control character other than a tab inside a line is refused where it stands: a reader
+ * that took "v\r" for a vertex in one place and for an unknown word in another once let face
+ * indices run past the vertex arrays. */
+static void test_obj_carriage_return_inside_vertex_line(void **state) {
+    fixture *f = *state;
+    check_obj_parse_error(f, write_file(f, "cr_v.obj", "v 0 0 0\nv 1 0 0\nv\r 1 1 0\nf 1 2 3\n"), 3);
+    check_obj_parse_error(f, write_file(f, "cr_v_first.obj", "v\r 0 0 0\nv 1 0 0\nv 1 1 0\nf -3 -2 -1\n"), 1);
+}
+
+static void test_obj_control_character_in_normal_and_texcoord_lines(void **state) {
+    fixture *f = *state;
+    check_obj_parse_error(f, obj_file(f, "cr_vn.obj", "vn\r 0 0 1\nf 1//1 2//1 3//1\n"), 4);
+    check_obj_parse_error(f, obj_file(f, "ff_vt.obj", "vt\f 0 0\nf 1/1 2/1 3/1\n"), 4);
+    check_obj_parse_error(f, obj_file(f, "vt_in_number.obj", "vt 0\v5 0\nf 1/1 2/1 3/1\n"), 4);
+}
+
+static void test_obj_crlf_line_ends_are_accepted(void **state) {
+    fixture *f = *state;
+    check_loads(f, write_file(f, "crlf.obj", "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n"), 1, 1);
+}
+
+static void test_obj_crlf_error_line(void **state) {
+    fixture *f = *state;
+    check_obj_parse_error(f, write_file(f, "crlf_bad.obj", "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 4\r\n"), 4);
+}
+
+static void test_obj_face_with_only_repeated_corners_is_refused(void **state) {
+    fixture *f = *state;
+    check_obj_parse_error(f, obj_file(f, "repeated.obj", "f 1 2 3\nf 1 1 2\n"), 5);
+    check_obj_parse_error(f, obj_file(f, "repeated_quad.obj", "f 1 2 1 2\n"), 4);
+}
+
+static void test_obj_polygon_keeps_its_triangles_with_area(void **state) {
+    fixture *f = *state;
+    /* the fan (1 2 2) (1 2 3) has one triangle with area */
+    check_loads(f, obj_file(f, "one_repeat.obj", "f 1 2 2 3\n"), 1, 1);
+}
+
+static void test_obj_vertex_colours_and_short_texcoords_load(void **state) {
+    fixture *f = *state;
+    check_loads(f,
+                write_file(f, "colours.obj",
+                           "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nvt 0.5\nf 1/1 2/1 3/1\n"),
+                1, 1);
+}
+
+static void test_obj_corner_with_four_parts_is_refused(void **state) {
+    fixture *f = *state;
+    check_obj_parse_error(f, obj_file(f, "four_parts.obj", "f 1/1/1/1 2 3\n"), 4);
+}
+
 #define TEST(name) cmocka_unit_test_setup_teardown(name, setup, teardown)
 
 int main(void) {
@@ -724,6 +775,14 @@ int main(void) {
         TEST(test_obj_normals_dropped_when_a_face_lacks_them),
         TEST(test_obj_texcoords_and_normals_load),
         TEST(test_obj_load_after_failed_load_gets_id_zero),
+        TEST(test_obj_carriage_return_inside_vertex_line),
+        TEST(test_obj_control_character_in_normal_and_texcoord_lines),
+        TEST(test_obj_crlf_line_ends_are_accepted),
+        TEST(test_obj_crlf_error_line),
+        TEST(test_obj_face_with_only_repeated_corners_is_refused),
+        TEST(test_obj_polygon_keeps_its_triangles_with_area),
+        TEST(test_obj_vertex_colours_and_short_texcoords_load),
+        TEST(test_obj_corner_with_four_parts_is_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,6 +1,6 @@
-// Reader for Wavefront OBJ meshes through tinyobjloader. All shapes become one triangle mesh;
-// polygons are triangulated; normals and texture coordinates are kept when every face
-// corner has them.
+// Reader for Wavefront OBJ meshes (v, vn, vt, f; other statements are skipped). All objects
+// become one triangle mesh; polygons are fanned from their first corner; normals and texture
+// coordinates are kept when every face corner has them.
 #pragma once
 
 #include "geometry/mesh_geometry.h"

@@ -16,7 +16,10 @@
 #include "io/atomic_file.h"
 #include "io/text_file.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <type_traits>
 
 namespace ppm {
@@ -81,7 +84,58 @@ private:
     std::size_t position_ = 0;
 };
 
+[[noreturn]] void corrupt(const std::string &path, const std::string &what) {
+    fail(PPM_ERROR_PARSE, path + ": corrupt checkpoint: " + what);
+}
+
+// Every pass emits at least one photon and at most the largest photons_per_pass; statistics
+// exist exactly when a pass has completed.
+void check_counts(const std::string &path, std::uint64_t passes, std::uint64_t emitted, std::uint64_t slots) {
+    if (passes == 0 && (emitted != 0 || slots != 0))
+        corrupt(path, "no pass recorded, but " + std::to_string(emitted) + " photons emitted and " +
+                          std::to_string(slots) + " pixel slots");
+    if (passes > 0 && slots == 0)
+        corrupt(path, std::to_string(passes) + " passes recorded but no pixel statistics");
+    if (passes > 0 && (emitted < passes || emitted / passes > kMaxPhotonsPerPass))
+        corrupt(path, std::to_string(emitted) + " photons emitted do not fit " + std::to_string(passes) +
+                          " passes of 1 to " + std::to_string(kMaxPhotonsPerPass) + " photons");
+}
+
 } // namespace
+
+// A checksum only proves that the file is as written; these bounds prove that the numbers
+// could have come from a render, so that a crafted file cannot make the next pass compute
+// NaN or infinite radiance. Each photon path adds at most one photon per scattering event to
+// a pixel (n <= emitted * max_depth limit); radii only shrink from the largest initial
+// radius any visible point can get; every estimate must fit the float image.
+void Renderer::check_statistics(const std::string &path, const std::vector<PixelStatistics> &stats,
+                                std::uint64_t passes, std::uint64_t emitted) const {
+    const Box3 &box = scene_->bounds();
+    const Vec3 far_corner{std::max(std::abs(box.lower.x - camera_settings_.origin.x), std::abs(box.upper.x - camera_settings_.origin.x)),
+                          std::max(std::abs(box.lower.y - camera_settings_.origin.y), std::abs(box.upper.y - camera_settings_.origin.y)),
+                          std::max(std::abs(box.lower.z - camera_settings_.origin.z), std::abs(box.upper.z - camera_settings_.origin.z))};
+    const double longest_path = length(far_corner) + kMaxDepthLimit * length(box.upper - box.lower);
+    const double largest_r2 = footprint_r2(longest_path);
+    const double most_photons = static_cast<double>(emitted) * kMaxDepthLimit;
+    const auto bad = [&](std::size_t slot, const char *field, double value, const char *rule) {
+        corrupt(path, "pixel slot " + std::to_string(slot) + ": " + field + " = " + format_number(value) + " (" + rule + ")");
+    };
+    const auto check_colour = [&](std::size_t slot, const char *field, const Rgb &c) {
+        for (double v : {c.r, c.g, c.b})
+            if (!(v >= 0 && std::isfinite(v))) bad(slot, field, v, "must be finite and >= 0");
+    };
+    for (std::size_t i = 0; i < stats.size(); ++i) {
+        const PixelStatistics &s = stats[i];
+        if (!(s.n >= 0 && s.n <= most_photons)) bad(i, "photon count N", s.n, "must lie in [0, photons emitted x 1000]");
+        if (!(s.r2 >= 0 && s.r2 <= largest_r2)) bad(i, "radius squared", s.r2, "must lie in [0, the largest initial radius squared]");
+        if (s.n > 0 && !(s.r2 > 0)) bad(i, "radius squared", s.r2, "must be > 0 where photons were found");
+        check_colour(i, "flux tau", s.tau);
+        check_colour(i, "direct light", s.direct);
+        const Rgb l = radiance_estimate(s, emitted, passes);
+        for (double v : {l.r, l.g, l.b})
+            if (!(v <= std::numeric_limits<float>::max())) bad(i, "radiance", v, "too large for the image");
+    }
+}
 
 std::uint64_t Renderer::camera_hash() const {
     Fnv1a h;
@@ -193,6 +247,7 @@ void Renderer::load_checkpoint(const std::string &path) {
                 format_number(settings_.initial_radius) + ", " + format_number(settings_.initial_radius_pixels));
     if (camera != camera_hash()) invalid_argument(path + ": checkpoint of another render: the camera differs");
     if (scene != scene_hash()) invalid_argument(path + ": checkpoint of another render: the scene differs");
+    check_counts(path, passes, emitted, slots);
     if (slots == 0) return; // saved before any pass completed: nothing to restore
 
     std::vector<std::uint32_t> pixels(slots);
@@ -203,6 +258,7 @@ void Renderer::load_checkpoint(const std::string &path) {
         r.get_bytes(v, sizeof v, "statistics");
         s.n = v[0], s.r2 = v[1], s.tau = Rgb{v[2], v[3], v[4]}, s.direct = Rgb{v[5], v[6], v[7]};
     }
+    check_statistics(path, stats, passes, emitted);
 
     // Rebuild the slots as the first pass made them (SPPM: one per pixel; PPM: the first eye
     // pass's split paths, traced again), then take the statistics.

@@ -25,11 +25,12 @@ void require_not_started(const std::string &key, bool started) {
 
 void RenderSettings::set_int(const std::string &key, std::int64_t value, bool started) {
     if (key == "photons_per_pass") {
-        if (value < 1 || value > (std::int64_t(1) << 31))
+        if (value < 1 || value > kMaxPhotonsPerPass)
             invalid_argument("photons_per_pass must be in 1 .. 2^31, not " + std::to_string(value));
         photons_per_pass = static_cast<std::uint64_t>(value);
     } else if (key == "max_depth") {
-        if (value < 1 || value > 1000) invalid_argument("max_depth must be in 1 .. 1000, not " + std::to_string(value));
+        if (value < 1 || value > kMaxDepthLimit)
+            invalid_argument("max_depth must be in 1 .. " + std::to_string(kMaxDepthLimit) + ", not " + std::to_string(value));
         max_depth = static_cast<int>(value);
     } else if (key == "seed") {
         require_not_started(key, started);

@@ -29,6 +29,10 @@
 
 namespace ppm {
 
+// The ranges of the integer settings (their checks and the checkpoint's plausibility bounds).
+constexpr std::int64_t kMaxPhotonsPerPass = std::int64_t(1) << 31;
+constexpr int kMaxDepthLimit = 1000;
+
 struct RenderSettings {
     enum class Mode { Sppm, Ppm };
     enum class Search { Grid, KdTree };

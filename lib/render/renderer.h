@@ -150,6 +150,9 @@ private:
     VisiblePoint make_visible_point(const SurfacePoint &sp, const Vec3 &ray_dir, const Rgb &weight,
                                     double path_length) const;
     double footprint_r2(double path_length) const;
+    // Throws PARSE, naming the slot and field, for statistics no render could have made.
+    void check_statistics(const std::string &path, const std::vector<PixelStatistics> &stats,
+                          std::uint64_t passes, std::uint64_t emitted) const;
     // Photon paths (photon_pass.cpp).
     void trace_photon(std::uint64_t index, std::uint32_t pass, std::vector<PhotonHit> &hits) const;
     void gather_sorted();
