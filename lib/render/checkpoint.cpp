@@ -91,6 +91,9 @@ private:
 // Every pass emits at least one photon and at most the largest photons_per_pass; statistics
 // exist exactly when a pass has completed.
 void check_counts(const std::string &path, std::uint64_t passes, std::uint64_t emitted, std::uint64_t slots) {
+    // The API reports both counts as int64_t; passes <= emitted is checked below.
+    if (emitted > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+        corrupt(path, std::to_string(emitted) + " photons emitted, more than 2^63 - 1");
     if (passes == 0 && (emitted != 0 || slots != 0))
         corrupt(path, "no pass recorded, but " + std::to_string(emitted) + " photons emitted and " +
                           std::to_string(slots) + " pixel slots");
