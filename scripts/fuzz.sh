@@ -9,7 +9,7 @@ FUZZ_DIR=${PPM_FUZZ_BUILD_DIR:-build-fuzz}
 
 usage() {
   cat <<EOF
-usage: bash scripts/fuzz.sh [-h] [--build-only] [TARGET|all] [SECONDS] [-- LIBFUZZER_ARGS...]
+usage: bash scripts/fuzz.sh [-h] [--build-only|--no-build] [TARGET|all] [SECONDS] [-- LIBFUZZER_ARGS...]
 
 Builds the fuzz targets of tests/fuzz/ with clang and -fsanitize=fuzzer,address,undefined in
 $FUZZ_DIR/ (installs clang with apt-get when it is missing: root or sudo), then runs TARGET
@@ -21,6 +21,10 @@ target's dictionary and limits. Inputs that crash, leak, time out or run out of 
 written to $FUZZ_DIR/findings/TARGET/; the log of each run is $FUZZ_DIR/logs/TARGET.log.
 At the end a table gives per target: executions, exec/s, coverage (cov: edges, ft:
 features), corpus size, findings.
+
+To fuzz two targets at once (one per core), build first and start each with --no-build:
+  bash scripts/fuzz.sh --build-only && (bash scripts/fuzz.sh --no-build obj 600 &) &&
+  bash scripts/fuzz.sh --no-build bpt 600
 
 To keep a finding as a reproducer, copy it into tests/fuzz/TARGET/crashes/ with a name that
 says what it is (see tests/fuzz/README.md); ctest then replays it in every build.
@@ -34,6 +38,7 @@ EOF
 }
 
 build_only=0
+no_build=0
 positional=()
 extra=()
 while (($#)); do
@@ -43,6 +48,7 @@ while (($#)); do
     exit 0
     ;;
   --build-only) build_only=1 ;;
+  --no-build) no_build=1 ;;
   --)
     shift
     extra=("$@")
@@ -76,36 +82,38 @@ declare -A MAX_LEN=([scene_json]=8192 [bpt]=16384 [obj]=4096 [checkpoint]=4096 [
 rss_mb=${PPM_FUZZ_RSS_MB:-2048}
 
 # ---------------------------------------------------------------------------------------------
-ppm_step "clang and libFuzzer"
-if ! command -v clang >/dev/null 2>&1 || ! command -v clang++ >/dev/null 2>&1 ||
-  ! echo 'extern "C" int LLVMFuzzerTestOneInput(const char *, unsigned long) { return 0; }' |
-  clang++ -fsanitize=fuzzer,address,undefined -x c++ - -o /dev/null 2>/dev/null; then
-  sudo=()
-  if ((EUID != 0)); then
-    command -v sudo >/dev/null 2>&1 || ppm_die "installing clang needs root: run as root or install sudo"
-    sudo=(sudo)
+if ((!no_build)); then
+  ppm_step "clang and libFuzzer"
+  if ! command -v clang >/dev/null 2>&1 || ! command -v clang++ >/dev/null 2>&1 ||
+    ! echo 'extern "C" int LLVMFuzzerTestOneInput(const char *, unsigned long) { return 0; }' |
+    clang++ -fsanitize=fuzzer,address,undefined -x c++ - -o /dev/null 2>/dev/null; then
+    sudo=()
+    if ((EUID != 0)); then
+      command -v sudo >/dev/null 2>&1 || ppm_die "installing clang needs root: run as root or install sudo"
+      sudo=(sudo)
+    fi
+    apt=("${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get -o DPkg::Lock::Timeout=600 -o Dpkg::Use-Pty=0 -y -q)
+    "${apt[@]}" update </dev/null
+    # libclang-rt-dev: the sanitizer and libFuzzer runtimes of Debian's default clang.
+    "${apt[@]}" install --no-install-recommends clang libclang-rt-dev </dev/null ||
+      ppm_die "apt-get could not install clang and its libFuzzer runtime"
   fi
-  apt=("${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get -o DPkg::Lock::Timeout=600 -o Dpkg::Use-Pty=0 -y -q)
-  "${apt[@]}" update </dev/null
-  # libclang-rt-dev: the sanitizer and libFuzzer runtimes of Debian's default clang.
-  "${apt[@]}" install --no-install-recommends clang libclang-rt-dev </dev/null ||
-    ppm_die "apt-get could not install clang and its libFuzzer runtime"
-fi
-clang --version | head -n 1
+  clang --version | head -n 1
 
-# ---------------------------------------------------------------------------------------------
-ppm_step "Build the fuzz targets in $FUZZ_DIR/"
-# The whole library is instrumented for coverage (fuzzer-no-link); only the targets link
-# libFuzzer's main. Tools are not needed.
-if [[ -f "$FUZZ_DIR/CMakeCache.txt" ]] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang++' "$FUZZ_DIR/CMakeCache.txt"; then
-  ppm_die "$FUZZ_DIR/ was configured with another compiler; remove it and run again"
+  # ---------------------------------------------------------------------------------------------
+  ppm_step "Build the fuzz targets in $FUZZ_DIR/"
+  # The whole library is instrumented for coverage (fuzzer-no-link); only the targets link
+  # libFuzzer's main. Tools are not needed.
+  if [[ -f "$FUZZ_DIR/CMakeCache.txt" ]] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang++' "$FUZZ_DIR/CMakeCache.txt"; then
+    ppm_die "$FUZZ_DIR/ was configured with another compiler; remove it and run again"
+  fi
+  CC=clang CXX=clang++ ppm_configure "$PPM_ROOT" "$FUZZ_DIR" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DPPM_SANITIZE=ON -DPPM_FUZZ_LIBFUZZER=ON -DPPM_BUILD_TOOLS=OFF \
+    -DCMAKE_C_FLAGS=-fsanitize=fuzzer-no-link -DCMAKE_CXX_FLAGS=-fsanitize=fuzzer-no-link >/dev/null ||
+    ppm_die "configuring $FUZZ_DIR/ failed"
+  cmake --build "$FUZZ_DIR" --parallel "$PPM_JOBS" --target "${selected[@]/#/fuzz_}" ||
+    ppm_die "building the fuzz targets failed"
 fi
-CC=clang CXX=clang++ ppm_configure "$PPM_ROOT" "$FUZZ_DIR" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DPPM_SANITIZE=ON -DPPM_FUZZ_LIBFUZZER=ON -DPPM_BUILD_TOOLS=OFF \
-  -DCMAKE_C_FLAGS=-fsanitize=fuzzer-no-link -DCMAKE_CXX_FLAGS=-fsanitize=fuzzer-no-link >/dev/null ||
-  ppm_die "configuring $FUZZ_DIR/ failed"
-cmake --build "$FUZZ_DIR" --parallel "$PPM_JOBS" --target "${selected[@]/#/fuzz_}" ||
-  ppm_die "building the fuzz targets failed"
 ((build_only)) && exit 0
 
 # ---------------------------------------------------------------------------------------------

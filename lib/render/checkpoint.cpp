@@ -132,6 +132,10 @@ void Renderer::check_statistics(const std::string &path, const std::vector<Pixel
         if (!(s.n >= 0 && s.n <= most_photons)) bad(i, "photon count N", s.n, "must lie in [0, photons emitted x 1000]");
         if (!(s.r2 >= 0 && s.r2 <= largest_r2)) bad(i, "radius squared", s.r2, "must lie in [0, the largest initial radius squared]");
         if (s.n > 0 && !(s.r2 > 0)) bad(i, "radius squared", s.r2, "must be > 0 where photons were found");
+        // A slot gets its radius before it gathers flux; the next pass would give a slot with
+        // r2 = 0 the initial radius and keep its flux.
+        if (s.r2 == 0 && !s.tau.is_black())
+            bad(i, "flux tau", std::max({s.tau.r, s.tau.g, s.tau.b}), "must be 0 where no radius was set");
         check_colour(i, "flux tau", s.tau);
         check_colour(i, "direct light", s.direct);
         const Rgb l = radiance_estimate(s, emitted, passes);
