@@ -141,12 +141,15 @@ for name in "${selected[@]}"; do
   after=$(find "$findings" -type f | wc -l)
   new=$((after - before))
   total_findings=$((total_findings + new))
-  # "#123456<TAB>DONE   cov: 2345 ft: 6789 corp: 321/45Kb lim: ... exec/s: 12 rss: 345Mb"
-  last=$(grep -E '^#[0-9]+[[:space:]]' "$log" | tail -n 1)
+  # "#123456<TAB>DONE   cov: 2345 ft: 6789 corp: 321/45Kb lim: ... exec/s: 12 rss: 345Mb", or
+  # in -fork mode "#123456: cov: 2345 ft: 6789 corp: 321 exec/s 12 ..." and no stat:: lines.
+  last=$(grep -E '^#[0-9]+[:[:space:]]' "$log" | tail -n 1)
   cov=$(sed -nE 's/.* cov: ([0-9]+).*/\1/p' <<<"$last")
   ft=$(sed -nE 's/.* ft: ([0-9]+).*/\1/p' <<<"$last")
   runs=$(sed -nE 's/^stat::number_of_executed_units: *([0-9]+).*/\1/p' "$log" | tail -n 1)
   speed=$(sed -nE 's/^stat::average_exec_per_sec: *([0-9]+).*/\1/p' "$log" | tail -n 1)
+  [[ -n "$runs" ]] || runs=$(sed -nE 's/^#([0-9]+).*/\1/p' <<<"$last")
+  [[ -n "$speed" || -z "$runs" ]] || speed=$((runs / (seconds > 0 ? seconds : 1)))
   files=$(find "$corpus" -type f | wc -l)
   summary+=("$(printf '%-11s %10s %7s %6s %7s %7s %8s  %s' "$name" "${runs:-?}" "${speed:-?}" \
     "${cov:-?}" "${ft:-?}" "$files" "$new" "exit $status")")
