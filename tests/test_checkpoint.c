@@ -280,11 +280,11 @@ static void test_implausible_statistics_are_refused(void **state) {
     craft_statistic(f, crafted, slot, 0, -1);
     expect_load_error(f, crafted, PPM_ERROR_PARSE, "photon count N = -1");
     craft_statistic(f, crafted, slot, 0, 1e300);
-    expect_load_error(f, crafted, PPM_ERROR_PARSE, "photon count N = 1.0000000000000001e+300 (must lie in [0, photons emitted x 1000])");
+    expect_load_error(f, crafted, PPM_ERROR_PARSE, "photon count N = 1e+300 (must lie in [0, photons emitted x 1000])");
     craft_statistic(f, crafted, slot, 1, -0.5);
     expect_load_error(f, crafted, PPM_ERROR_PARSE, "radius squared = -0.5");
     craft_statistic(f, crafted, slot, 1, 1e300);
-    expect_load_error(f, crafted, PPM_ERROR_PARSE, "radius squared = 1.0000000000000001e+300");
+    expect_load_error(f, crafted, PPM_ERROR_PARSE, "radius squared = 1e+300");
     craft_statistic(f, crafted, slot, 1, INFINITY);
     expect_load_error(f, crafted, PPM_ERROR_PARSE, "radius squared = inf");
     craft_statistic(f, crafted, slot, 3, NAN);

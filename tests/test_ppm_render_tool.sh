@@ -107,11 +107,15 @@ else
   fail "SIGINT: exit $status, stderr: $(cat stopped.txt)"
 fi
 
-# --time: stops within the budget (plus loading and writing) although the passes ask for more.
-start_ms=$(($(date +%s%N) / 1000000))
-"$render" "$scene" --photons "$photons" --passes 100000 --time 1.5 -o timed.png -q || fail "--time render failed"
-elapsed_ms=$(($(date +%s%N) / 1000000 - start_ms))
-if ((elapsed_ms < 4500)); then echo "ok: --time 1.5 took ${elapsed_ms} ms"; else fail "--time 1.5 took ${elapsed_ms} ms"; fi
+# --time: the time budget, not the pass count, ends the render (no bound on wall-clock time is
+# asserted: a loaded machine may take longer for everything).
+"$render" "$scene" --photons "$photons" --passes 100000 --time 0.5 -o timed.png 2>timed.txt || fail "--time render failed"
+timed_passes=$(sed -n 's/^ppm-render: \([0-9]*\) passes .*/\1/p' timed.txt | tail -n 1)
+if [[ -n "$timed_passes" ]] && ((timed_passes >= 1 && timed_passes < 100000)) && [[ -s timed.png ]]; then
+  echo "ok: --time 0.5 stopped after $timed_passes passes"
+else
+  fail "--time 0.5: $(cat timed.txt)"
+fi
 
 # --- every example scene renders (one cheap pass) ---------------------------------------------
 for example in "$examples"/*.json; do

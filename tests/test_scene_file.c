@@ -263,6 +263,87 @@ static void test_errors_are_located(void **state) {
                  PPM_ERROR_IO, "shapes[0].filename: file not found: ");
 }
 
+/* Loads `size` bytes as <folder>/scene.json (NUL bytes included) and expects a PARSE error
+ * whose message holds `fragment`. */
+static void expect_bytes_error(fixture *f, const char *bytes, size_t size, const char *fragment) {
+    FILE *file = fopen(f->path, "wb");
+    assert_non_null(file);
+    assert_int_equal(fwrite(bytes, 1, size, file), size);
+    fclose(file);
+    ppm_scene_file scene_file = NULL;
+    const ppm_status got = ppm_scene_file_load(f->context, f->path, &scene_file);
+    if (got != PPM_ERROR_PARSE || !strstr(ppm_last_error_message(), fragment))
+        fail_msg("status %d, message '%s', expected PARSE with '%s'", got, ppm_last_error_message(), fragment);
+    assert_null(scene_file);
+}
+
+static void test_unreadable_bytes_and_deep_nesting(void **state) {
+    fixture *f = *state;
+    /* 201 nested arrays: a located PARSE error, not jsoncpp's unlocated exception. */
+    char deep[256];
+    memset(deep, '[', 201);
+    deep[201] = '\0';
+    EXPECT_ERROR(f, deep, PPM_ERROR_PARSE, "scene.json:1:65: arrays and objects nested more than 64 levels deep");
+    /* Deep nesting inside strings and comments is text, not nesting. */
+    char text[512];
+    snprintf(text, sizeof text, "// %s\n{\"shapes\": [{\"type\": \"sphere\"}]}", deep);
+    ppm_scene_file file = NULL;
+    write_text(f->path, text);
+    assert_int_equal(ppm_scene_file_load(f->context, f->path, &file), PPM_OK);
+    ppm_scene_file_release(file);
+    /* Bytes after a NUL that follows the value were once ignored. */
+    static const char after_nul[] = "{\"shapes\": [{\"type\": \"sphere\"}]}\0{garbage";
+    expect_bytes_error(f, after_nul, sizeof after_nul - 1, "scene.json:1:33: NUL byte in the file");
+    static const char nul_in_string[] = "{\"shapes\": [{\"type\": \"sph\0ere\"}]}";
+    expect_bytes_error(f, nul_in_string, sizeof nul_in_string - 1, "scene.json:1:26: NUL byte in the file");
+    /* An escaped NUL inside a file name would name another file once passed on as a C string. */
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"obj\", \"filename\": \"a.obj\\u0000.png\"}]}", PPM_ERROR_PARSE,
+                 "shapes[0].filename: a string must not contain a NUL character");
+}
+
+/* Numbers that would overflow while rendering are refused where the file gives them. */
+static void test_overflowing_magnitudes_are_refused_where_they_stand(void **state) {
+    fixture *f = *state;
+    EXPECT_ERROR(f, "{\"emitters\": [{\"type\": \"point\", \"intensity\": 1e308}], \"shapes\": [{\"type\": \"sphere\"}]}",
+                 PPM_ERROR_INVALID_ARGUMENT, "scene.json:1:15: emitters[0]: intensity 1e+308 exceeds the limit 1e+20");
+    EXPECT_ERROR(f,
+                 "{\"shapes\": [{\"type\": \"rectangle\", \"emitter\": {\"type\": \"area\", \"radiance\": [1e300, 1, "
+                 "1]}}]}",
+                 PPM_ERROR_INVALID_ARGUMENT, "shapes[0].emitter: radiance 1e+300 exceeds the limit 1e+20");
+    EXPECT_ERROR(f, "{\"integrator\": {\"initial_radius\": 1e300}, \"shapes\": [{\"type\": \"sphere\"}]}",
+                 PPM_ERROR_PARSE, "integrator.initial_radius: initial_radius must lie in [0, 1000000000000] (0 = automatic), not 1e+300");
+    EXPECT_ERROR(f,
+                 "{\"sensor\": {\"to_world\": [{\"translate\": [1e308, 0, 0]}, {\"translate\": [1e308, 0, 0]}]}, "
+                 "\"shapes\": [{\"type\": \"sphere\"}]}",
+                 PPM_ERROR_PARSE, "sensor.to_world: the transform moves the origin to inf");
+    EXPECT_ERROR(f, "{\"sensor\": {\"to_world\": {\"translate\": [0, 2e12, 0]}}, \"shapes\": [{\"type\": \"sphere\"}]}",
+                 PPM_ERROR_PARSE, "sensor.to_world: the transform moves the origin to 2000000000000, beyond +-1000000000000");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"sphere\", \"radius\": 1e308}]}", PPM_ERROR_INVALID_ARGUMENT,
+                 "shapes[0]: sphere radius must lie in (0, 1000000000000], not 1e+308");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"sphere\", \"center\": [0, 0, 1e15]}]}", PPM_ERROR_INVALID_ARGUMENT,
+                 "shapes[0]: center has a coordinate beyond +-1000000000000");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"sphere\", \"radius\": 1e12, \"center\": [1e12, 0, 0]}]}",
+                 PPM_ERROR_INVALID_ARGUMENT, "shapes[0]: the bounding box of the sphere reaches the coordinate 2000000000000");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"rectangle\", \"to_world\": {\"scale\": 1e13}}]}",
+                 PPM_ERROR_INVALID_ARGUMENT, "scene.json:1:13: shapes[0]: origin has a coordinate beyond");
+    EXPECT_ERROR(f,
+                 "{\"shapes\": [{\"type\": \"bezier\", \"to_world\": {\"scale\": 1e12}, \"patches\": [[[0,0,0],[1,0,0],"
+                 "[2,0,0],[3,0,0],[0,1,0],[1,1,0],[2,1,0],[3,1,0],[0,2,0],[1,2,0],[2,2,0],[3,2,0],[0,3,0],[1,3,0],"
+                 "[2,3,0],[3,3,0]]]}]}",
+                 PPM_ERROR_INVALID_ARGUMENT, "shapes[0].to_world: geometry 0 (Bezier patches): the bounding box of the Bezier patches reaches the coordinate 3000000000000");
+    char bpt[320];
+    snprintf(bpt, sizeof bpt, "%s/far.bpt", f->folder);
+    write_text(bpt, "1\n3 3\n0 0 0\n1 0 0\n2 0 0\n3 0 0\n0 1 0\n1 1 0\n2 1 0\n3 1 0\n0 2 0\n1 2 0\n2 2 0\n3 2 0\n"
+                    "0 3 0\n1 3 1e307\n2 3 0\n3 3 0\n");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"bezier\", \"filename\": \"far.bpt\"}]}", PPM_ERROR_PARSE,
+                 "far.bpt:16: ", "'1e307' lies beyond +-1000000000000");
+    char obj[320];
+    snprintf(obj, sizeof obj, "%s/far.obj", f->folder);
+    write_text(obj, "v 0 0 0\nv 1 0 0\nv 0 -1e13 0\nf 1 2 3\n");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"obj\", \"filename\": \"far.obj\"}]}", PPM_ERROR_PARSE,
+                 "far.obj:3: coordinate '-1e13' lies beyond +-1000000000000");
+}
+
 static void test_missing_and_malformed_files(void **state) {
     fixture *f = *state;
     ppm_scene_file file = NULL;
@@ -313,6 +394,8 @@ int main(void) {
         cmocka_unit_test_setup_teardown(test_defaults_and_inline_patches, setup, teardown),
         cmocka_unit_test_setup_teardown(test_errors_are_located, setup, teardown),
         cmocka_unit_test_setup_teardown(test_missing_and_malformed_files, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_unreadable_bytes_and_deep_nesting, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_overflowing_magnitudes_are_refused_where_they_stand, setup, teardown),
         cmocka_unit_test_setup_teardown(test_examples_load, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -133,8 +133,10 @@ PPM_API ppm_status ppm_scene_get_double(ppm_scene scene, const char *key, double
 
 /* Geometry. Each add call copies its input and returns a geometry id (0, 1, 2, ... in the
  * order of addition) in *out_geom_id, which may be NULL. Adding marks the scene uncommitted.
- * Coordinates must be finite; degenerate input (zero radius, zero-area quad, out-of-range
- * index) is INVALID_ARGUMENT naming the offending element. Zero-area triangles of a mesh are
+ * Coordinates must be finite, and every coordinate, length and radius of the placed geometry
+ * (its transform applied) must lie within +-1e12 scene units; degenerate input (zero radius,
+ * zero-area quad, out-of-range index) and input beyond that limit are INVALID_ARGUMENT naming
+ * the offending element. Zero-area triangles of a mesh are
  * allowed and never hit. A failed add leaves the scene unchanged.
  * Thread safety of all calls that change a scene (add, load, set, commit): they must not overlap
  * any other call on the same scene. */
@@ -173,10 +175,14 @@ PPM_API ppm_status ppm_scene_add_triangle_mesh(ppm_scene scene, const double *po
                                                size_t triangle_count, const double *normals,
                                                const double *uvs, uint32_t *out_geom_id);
 
-/* Reads a Wavefront OBJ file (through tinyobjloader; all its shapes become one triangle
- * mesh, polygons triangulated, per-vertex normals and texture coordinates kept when every
- * face has them; a `vt u v` becomes uv (u, 1 - v): OBJ's v = 0 is the image's bottom row,
- * libppm's and Mitsuba's the top). Errors: IO, PARSE (message names file and line where the loader says). */
+/* Reads a Wavefront OBJ file (v, vn, vt and f statements; all objects become one triangle
+ * mesh, polygons are fanned from their first corner, per-vertex normals and texture
+ * coordinates are kept when every face has them; a `vt u v` becomes uv (u, 1 - v): OBJ's
+ * v = 0 is the image's bottom row, libppm's and Mitsuba's the top). Words are separated by
+ * spaces and tabs; lines end with "\n" or "\r\n". Errors: IO, PARSE naming file and line (a
+ * number that is not one, not finite or beyond +-1e12; an index out of range; a face with
+ * fewer than 3 corners or with no area; a control character), INVALID_ARGUMENT (the
+ * placed mesh beyond the coordinate limit). */
 PPM_API ppm_status ppm_scene_load_obj(ppm_scene scene, const char *path, uint32_t *out_geom_id);
 
 /* Affine transform of a geometry: 16 doubles, row-major 4x4 matrix M applied to points as
@@ -205,7 +211,8 @@ PPM_API ppm_status ppm_scene_get_bezier_patches(ppm_scene scene, uint32_t geom_i
                                                 size_t capacity);
 
 /* Builds the acceleration structure. Required after any change and before queries.
- * Errors: INVALID_OPERATION (empty scene). */
+ * Errors: INVALID_OPERATION (empty scene), INVALID_ARGUMENT (every geometry degenerate, so
+ * the scene's bounding box is a point). */
 PPM_API ppm_status ppm_scene_commit(ppm_scene scene);
 
 /* Axis-aligned bounds of the committed scene (control-point hulls for patches). */

@@ -45,8 +45,24 @@ std::vector<ppm::BezierPatch> read_patches(const double *control_points, size_t 
 }
 
 // `make` validates its input and returns the new geometry (or throws).
+// Throws INVALID_ARGUMENT unless the geometry's box under `transform` lies within the
+// coordinate limit (math/limits.h), so that commit never meets an overflowing box.
+void check_world_box(ppm::Geometry &geometry, const ppm::Affine &transform) {
+    const ppm::Box3 box = geometry.prepare(transform);
+    for (const double v : {box.lower.x, box.lower.y, box.lower.z, box.upper.x, box.upper.y, box.upper.z})
+        if (!ppm::within(v, ppm::kCoordinateLimit))
+            invalid_argument(std::string("the bounding box of the ") + geometry.kind() + " reaches the coordinate " +
+                             ppm::format_number(v) +
+                             ", beyond +-" + ppm::format_number(ppm::kCoordinateLimit) +
+                             " (the limit of scene coordinates)");
+}
+
 template <class Make> ppm_status add_geometry(ppm_scene scene, uint32_t *out_geom_id, Make &&make) {
-    return scene_call(scene, [&](ppm::Scene &s) { write_id(out_geom_id, s.add(make())); });
+    return scene_call(scene, [&](ppm::Scene &s) {
+        std::unique_ptr<ppm::Geometry> geometry = make();
+        check_world_box(*geometry, geometry->transform);
+        write_id(out_geom_id, s.add(std::move(geometry)));
+    });
 }
 
 [[noreturn]] void unknown_scene_setting(const char *key) {
@@ -195,8 +211,9 @@ ppm_status ppm_scene_load_bpt(ppm_scene scene, const char *path, uint32_t *out_g
 ppm_status ppm_scene_add_sphere(ppm_scene scene, const double center[3], double radius, uint32_t *out_geom_id) {
     return add_geometry(scene, out_geom_id, [&] {
         const ppm::Vec3 c = finite_point(center, "center");
-        if (!(radius > 0) || !std::isfinite(radius))
-            invalid_argument("sphere radius must be finite and > 0, not " + ppm::format_number(radius));
+        if (!(radius > 0) || !(radius <= ppm::kCoordinateLimit))
+            invalid_argument("sphere radius must lie in (0, " + ppm::format_number(ppm::kCoordinateLimit) + "], not " +
+                             ppm::format_number(radius));
         return std::make_unique<ppm::SphereGeometry>(c, radius);
     });
 }
@@ -279,6 +296,7 @@ ppm_status ppm_scene_set_geometry_transform(ppm_scene scene, uint32_t geom_id, c
             invalid_argument("the matrix's upper 3x3 is singular");
         try {
             g.check_transform(transform);
+            check_world_box(g, transform);
         } catch (const ppm::Error &e) {
             invalid_argument("geometry " + std::to_string(geom_id) + " (" + g.kind() + "): " + e.what());
         }

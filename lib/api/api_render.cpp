@@ -23,6 +23,15 @@ ppm::Rgb read_color(const double *c, const char *name) {
     return rgb;
 }
 
+// An intensity or radiance: a colour no larger than the emission limit (math/limits.h).
+ppm::Rgb read_emission(const double *c, const char *name) {
+    const ppm::Rgb rgb = read_color(c, name);
+    if (rgb.max() > ppm::kEmissionLimit)
+        invalid_argument(std::string(name) + " " + ppm::format_number(rgb.max()) + " exceeds the limit " +
+                         ppm::format_number(ppm::kEmissionLimit) + " of light values");
+    return rgb;
+}
+
 ppm::Rgb read_reflectance(const double *c, const char *name) {
     const ppm::Rgb rgb = read_color(c, name);
     if (rgb.max() > 1) invalid_argument(std::string(name) + " must be at most 1 in every channel (energy conservation)");
@@ -119,7 +128,7 @@ ppm_status ppm_scene_add_point_light(ppm_scene scene, const double position[3], 
                                      uint32_t *out_light_id) {
     return scene_call(scene, [&](ppm::Scene &s) {
         const ppm::Vec3 p = finite_point(position, "position");
-        write_id(out_light_id, s.add_light(ppm::Light::point(p, read_color(intensity, "intensity"))));
+        write_id(out_light_id, s.add_light(ppm::Light::point(p, read_emission(intensity, "intensity"))));
     });
 }
 
@@ -128,7 +137,7 @@ ppm_status ppm_scene_add_spot_light(ppm_scene scene, const double position[3], c
                                     uint32_t *out_light_id) {
     return scene_call(scene, [&](ppm::Scene &s) {
         const ppm::Vec3 p = finite_point(position, "position"), t = finite_point(target, "target");
-        write_id(out_light_id, s.add_light(ppm::Light::spot(p, t, read_color(intensity, "intensity"), cutoff_angle,
+        write_id(out_light_id, s.add_light(ppm::Light::spot(p, t, read_emission(intensity, "intensity"), cutoff_angle,
                                                             beam_width)));
     });
 }
@@ -136,7 +145,7 @@ ppm_status ppm_scene_add_spot_light(ppm_scene scene, const double position[3], c
 ppm_status ppm_scene_set_geometry_emission(ppm_scene scene, uint32_t geom_id, const double radiance[3]) {
     return scene_call(scene, [&](ppm::Scene &s) {
         ppm::Geometry &g = s.geometry(geom_id);
-        const ppm::Rgb rgb = read_color(radiance, "radiance");
+        const ppm::Rgb rgb = read_emission(radiance, "radiance");
         if (!dynamic_cast<ppm::QuadGeometry *>(&g) && !dynamic_cast<ppm::SphereGeometry *>(&g))
             invalid_argument("geometry " + std::to_string(geom_id) + " is a " + g.kind() +
                              "; only quads and spheres can be area lights");

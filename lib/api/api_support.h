@@ -6,6 +6,7 @@
 
 #include "core/context.h"
 #include "core/error.h"
+#include "math/limits.h"
 #include "math/vec3.h"
 #include "scene/scene.h"
 
@@ -52,10 +53,15 @@ template <class T> void require(const T *pointer, const char *name) {
 
 inline void require_key(const char *key) { require(key, "key"); }
 
+// A point or vector of the scene: finite and within the coordinate limit (math/limits.h).
 inline ppm::Vec3 finite_point(const double *p, const char *name) {
     require(p, name);
     const ppm::Vec3 v = ppm::Vec3::from(p);
     if (!ppm::is_finite(v)) ppm::invalid_argument(std::string(name) + " has a NaN or infinite coordinate");
+    if (!ppm::within(v.x, ppm::kCoordinateLimit) || !ppm::within(v.y, ppm::kCoordinateLimit) ||
+        !ppm::within(v.z, ppm::kCoordinateLimit))
+        ppm::invalid_argument(std::string(name) + " has a coordinate beyond +-" + ppm::format_number(ppm::kCoordinateLimit) +
+                              " (the limit of scene coordinates)");
     return v;
 }
 

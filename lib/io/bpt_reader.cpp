@@ -1,6 +1,7 @@
 #include "io/bpt_reader.h"
 
 #include "core/error.h"
+#include "math/limits.h"
 #include "io/text_file.h"
 
 #include <cerrno>
@@ -46,6 +47,9 @@ public:
         if (end != token.c_str() + token.size()) error(std::string("'") + token + "' is not a number (" + what + ")");
         if (!std::isfinite(value)) // "nan", "inf" and overflow
             error(std::string(what) + " '" + token + "' is not a finite number");
+        if (!within(value, kCoordinateLimit))
+            error(std::string(what) + " '" + token + "' lies beyond +-" + format_number(kCoordinateLimit) +
+                  " (the limit of scene coordinates)");
         return value;
     }
 

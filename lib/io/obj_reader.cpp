@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "io/text_file.h"
+#include "math/limits.h"
 
 #include <cerrno>
 #include <cmath>
@@ -93,6 +94,9 @@ private:
         const double value = std::strtod(word.c_str(), &end);
         if (word.empty() || end != word.c_str() + word.size()) error("'" + word + "' is not a number");
         if (!std::isfinite(value)) error("coordinate '" + word + "' is not finite");
+        if (!within(value, kCoordinateLimit))
+            error("coordinate '" + word + "' lies beyond +-" + format_number(kCoordinateLimit) +
+                  " (the limit of scene coordinates)");
         return value;
     }
 

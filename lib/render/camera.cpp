@@ -1,6 +1,7 @@
 #include "render/camera.h"
 
 #include "core/error.h"
+#include "math/limits.h"
 #include "render/warp.h"
 
 #include <cmath>
@@ -11,6 +12,9 @@ namespace {
 
 void require_finite(const Vec3 &v, const char *name) {
     if (!is_finite(v)) invalid_argument(std::string("camera ") + name + " is not finite");
+    if (!within(v.x, kCoordinateLimit) || !within(v.y, kCoordinateLimit) || !within(v.z, kCoordinateLimit))
+        invalid_argument(std::string("camera ") + name + " has a coordinate beyond +-" + format_number(kCoordinateLimit) +
+                         " (the limit of scene coordinates)");
 }
 
 } // namespace

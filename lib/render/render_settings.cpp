@@ -1,6 +1,7 @@
 #include "render/render_settings.h"
 
 #include "core/error.h"
+#include "math/limits.h"
 
 #include <cmath>
 
@@ -53,7 +54,9 @@ void RenderSettings::set_double(const std::string &key, double value, bool start
         alpha = value;
     } else if (key == "initial_radius") {
         require_not_started(key, started);
-        if (!(value >= 0)) invalid_argument("initial_radius must be >= 0 (0 = automatic), not " + format_number(value));
+        if (!(value >= 0 && value <= kCoordinateLimit))
+            invalid_argument("initial_radius must lie in [0, " + format_number(kCoordinateLimit) +
+                             "] (0 = automatic), not " + format_number(value));
         initial_radius = value;
     } else if (key == "initial_radius_pixels") {
         require_not_started(key, started);

@@ -31,6 +31,52 @@ std::string first_jsoncpp_error(const std::string &path, const std::string &erro
     return path + ": " + errors;
 }
 
+// Scene files nest a few levels deep; anything deeper is refused before jsoncpp recurses into
+// it (its own stack limit throws an exception that carries no position).
+constexpr int kMaxNesting = 64;
+
+// The offset of the first NUL byte, or of the bracket that opens level kMaxNesting + 1, outside
+// strings and comments; npos if there is none. `what` says which.
+std::size_t first_unreadable_byte(const std::string &text, std::string &what) {
+    int depth = 0;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (c == '\0') {
+            what = "NUL byte in the file";
+            return i;
+        }
+        if (c == '"') {
+            for (++i; i < text.size() && text[i] != '"'; ++i) {
+                if (text[i] == '\0') {
+                    what = "NUL byte in the file";
+                    return i;
+                }
+                if (text[i] == '\\') ++i;
+            }
+        } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') {
+            i = text.find('\n', i);
+            if (i == std::string::npos) break;
+        } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
+            const std::size_t end = text.find("*/", i + 2);
+            if (end == std::string::npos) break;
+            const std::size_t nul = text.find('\0', i);
+            if (nul < end) {
+                what = "NUL byte in the file";
+                return nul;
+            }
+            i = end + 1;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxNesting) {
+                what = "arrays and objects nested more than " + std::to_string(kMaxNesting) + " levels deep";
+                return i;
+            }
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+    return std::string::npos;
+}
+
 std::string describe_allowed(std::initializer_list<const char *> allowed) {
     std::string list;
     for (const char *key : allowed) list += (list.empty() ? "" : ", ") + std::string(key);
@@ -59,16 +105,28 @@ JsonDocument::JsonDocument(const std::string &path) : path_(path), text_(read_te
     builder["rejectDupKeys"] = true;
     builder["allowSpecialFloats"] = false;
     builder["stackLimit"] = 200;
+    std::string unreadable;
+    const std::size_t bad = first_unreadable_byte(text_, unreadable);
+    if (bad != std::string::npos) parse_error(location_of_offset(bad) + ": " + unreadable);
     const std::unique_ptr<Json::CharReader> reader(builder.newCharReader());
     std::string errors;
-    if (!reader->parse(text_.data(), text_.data() + text_.size(), &root_, &errors))
-        parse_error(first_jsoncpp_error(path_, errors));
+    bool parsed = false;
+    try {
+        parsed = reader->parse(text_.data(), text_.data() + text_.size(), &root_, &errors);
+    } catch (const std::exception &e) {
+        parse_error(path_ + ": " + e.what());
+    }
+    if (!parsed) parse_error(first_jsoncpp_error(path_, errors));
     if (!root_.isObject()) parse_error(location(root_) + ": the scene must be a JSON object { ... }");
 }
 
 std::string JsonDocument::location(const Json::Value &value) const {
     const std::ptrdiff_t offset = value.getOffsetStart();
     if (offset < 0 || static_cast<std::size_t>(offset) > text_.size()) return path_;
+    return location_of_offset(static_cast<std::size_t>(offset));
+}
+
+std::string JsonDocument::location_of_offset(std::size_t offset) const {
     const auto line = std::upper_bound(line_starts_.begin(), line_starts_.end(), static_cast<std::size_t>(offset)) - 1;
     const std::size_t line_number = static_cast<std::size_t>(line - line_starts_.begin()) + 1;
     const std::size_t column = static_cast<std::size_t>(offset) - *line + 1;
@@ -168,7 +226,10 @@ bool JsonNode::boolean() const {
 
 std::string JsonNode::string() const {
     if (!value_->isString()) fail("expected a string");
-    return value_->asString();
+    std::string s = value_->asString();
+    // A C string (a file name, a key) would end at the NUL and name something else.
+    if (s.find('\0') != std::string::npos) fail("a string must not contain a NUL character (\\u0000)");
+    return s;
 }
 
 std::string JsonNode::one_of(std::initializer_list<const char *> choices) const {

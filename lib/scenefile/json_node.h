@@ -15,8 +15,8 @@ namespace ppm {
 // A parsed JSON file and the map from byte offsets to lines and columns.
 class JsonDocument {
 public:
-    // Reads and parses `path`: comments allowed, duplicate keys, trailing garbage and
-    // non-finite numbers rejected. Throws ppm::Error: IO (unreadable file), PARSE (syntax;
+    // Reads and parses `path`: comments allowed; duplicate keys, trailing garbage, NUL bytes,
+    // nesting deeper than 64 levels and non-finite numbers rejected. Throws ppm::Error: IO (unreadable file), PARSE (syntax;
     // the message is "path:line:column: what").
     explicit JsonDocument(const std::string &path);
 
@@ -24,6 +24,7 @@ public:
     const Json::Value &root() const { return root_; }
     // "path:line:column" of a value (the file alone if jsoncpp gave it no offset).
     std::string location(const Json::Value &value) const;
+    std::string location_of_offset(std::size_t offset) const;
 
 private:
     std::string path_;

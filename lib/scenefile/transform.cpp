@@ -1,5 +1,8 @@
 #include "scenefile/transform.h"
 
+#include "core/error.h"
+#include "math/limits.h"
+
 #include <cmath>
 
 namespace ppm {
@@ -117,6 +120,10 @@ Affine parse_transform(const JsonNode &node) {
     }
     const double det = result.determinant();
     if (!(std::fabs(det) > 1e-300) || !std::isfinite(det)) node.fail("the transform is singular or not finite");
+    for (int row = 0; row < 3; ++row)
+        if (!within(result.m[row][3], kCoordinateLimit))
+            node.fail("the transform moves the origin to " + format_number(result.m[row][3]) + ", beyond +-" +
+                      format_number(kCoordinateLimit) + " (the limit of scene coordinates)");
     return result;
 }
 
