@@ -1,6 +1,6 @@
 // JSON scene files through ppm_scene_file_load. A file either loads (and then its renderer is
 // created and renders one finite pass on a film of at most 64 x 64 pixels) or is refused with
-// PARSE or IO naming the file. The scene's folder holds small files that scenes may refer to:
+// PARSE, IO or INVALID_ARGUMENT naming the file. The scene's folder holds small files that scenes may refer to:
 // texture.png, texture.pfm, mesh.obj and patch.bpt.
 #include "fuzz_support.h"
 
@@ -50,7 +50,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     ppm_scene_file file = nullptr;
     const ppm_status status = ppm_scene_file_load(fuzz::context(), path.c_str(), &file);
     if (status != PPM_OK) {
-        fuzz::expect_located_error(status, {PPM_ERROR_PARSE, PPM_ERROR_IO}, "scene.json", "ppm_scene_file_load");
+        // INVALID_ARGUMENT: a value the scene API itself refuses, passed on with the file's location.
+        fuzz::expect_located_error(status, {PPM_ERROR_PARSE, PPM_ERROR_IO, PPM_ERROR_INVALID_ARGUMENT}, "scene.json",
+                                   "ppm_scene_file_load");
         return 0;
     }
     ppm_camera camera{};
