@@ -158,6 +158,23 @@ void truncated_png_is_a_quiet_io_error(void **) {
     }
 }
 
+// A header that claims more pixels than the file's bytes can hold is refused before anything
+// of that size is allocated (here 10000 x 10000 RGB, 300 MB, from a file of 19 bytes).
+void oversized_header_is_refused_before_allocating(void **) {
+    const std::string path = temp_path("huge.ppm");
+    std::FILE *f = std::fopen(path.c_str(), "wb");
+    std::fputs("P6\n10000 10000\n255\n", f);
+    std::fclose(f);
+    try {
+        Texture::load(path);
+        fail_msg("oversized texture loaded");
+    } catch (const Error &e) {
+        assert_int_equal(e.status(), PPM_ERROR_PARSE);
+        assert_non_null(std::strstr(e.what(), "its header claims 10000 x 10000 pixels, more than its 19 bytes can hold"));
+    }
+    std::remove(path.c_str());
+}
+
 } // namespace
 
 // OBJ's vt puts v = 0 at the image's bottom row; libppm (like Mitsuba) at the top: the reader
@@ -176,6 +193,7 @@ int main() {
         cmocka_unit_test(material_applies_mapping_and_keeps_energy),
         cmocka_unit_test(bad_files_are_clear_errors),
         cmocka_unit_test(truncated_png_is_a_quiet_io_error),
+        cmocka_unit_test(oversized_header_is_refused_before_allocating),
         cmocka_unit_test(obj_texture_coordinates_follow_the_obj_convention),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);

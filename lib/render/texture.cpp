@@ -4,6 +4,8 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -70,6 +72,10 @@ void check_png_is_complete(const std::string &path) {
     }
 }
 
+// The largest ratio of decoded to stored bytes of the codecs image files use: DEFLATE (PNG,
+// EXR's ZIP) expands at most 1032:1; RLE, PIZ and JPEG less.
+constexpr double kMaxExpansion = 1032;
+
 } // namespace
 
 std::shared_ptr<const Texture> Texture::load(const std::string &path) {
@@ -83,6 +89,15 @@ std::shared_ptr<const Texture> Texture::load(const std::string &path) {
     if (pixels > (1ll << 28))
         invalid_argument("texture '" + path + "' has " + std::to_string(pixels) +
                          " pixels, more than the limit of 2^28");
+    // A header can claim any size: the decoded image must be one the file's bytes can hold,
+    // so that a few bytes never make us allocate gigabytes.
+    struct stat info {};
+    const double file_bytes = stat(path.c_str(), &info) == 0 ? static_cast<double>(info.st_size) : 0;
+    const double decoded_bytes = static_cast<double>(pixels) * spec.nchannels * spec.format.size();
+    if (decoded_bytes > kMaxExpansion * std::max(file_bytes, 1.0))
+        fail(PPM_ERROR_PARSE, "texture '" + path + "': its header claims " + std::to_string(spec.width) + " x " +
+                                  std::to_string(spec.height) + " pixels, more than its " +
+                                  std::to_string(static_cast<long long>(file_bytes)) + " bytes can hold");
     const int channels = std::min(spec.nchannels, 3);
     std::vector<float> data(static_cast<size_t>(pixels) * channels);
     if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
