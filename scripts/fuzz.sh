@@ -131,12 +131,16 @@ for name in "${selected[@]}"; do
   log="$FUZZ_DIR/logs/$name.log"
   mkdir -p "$corpus" "$findings" "$(dirname "$log")"
   before=$(find "$findings" -type f | wc -l)
+  # The targets' temporary files, including those of processes that crashed.
+  scratch="$FUZZ_DIR/tmp/$name"
+  mkdir -p "$scratch"
   # New inputs go to the first folder (the grown corpus); the committed seeds are only read.
-  "$FUZZ_DIR/tests/fuzz/fuzz_$name" -max_total_time="$seconds" -max_len="${MAX_LEN[$name]}" \
+  TMPDIR="$(ppm_abspath "$scratch")" "$FUZZ_DIR/tests/fuzz/fuzz_$name" -max_total_time="$seconds" -max_len="${MAX_LEN[$name]}" \
     -rss_limit_mb="$rss_mb" -malloc_limit_mb="$rss_mb" -timeout=10 -print_final_stats=1 \
     -dict="tests/fuzz/$name.dict" -artifact_prefix="$findings/" "${extra[@]}" \
     "$corpus" "tests/fuzz/$name/corpus" >"$log" 2>&1
   status=$?
+  rm -rf "$scratch"
   tail -n 12 "$log"
   after=$(find "$findings" -type f | wc -l)
   new=$((after - before))

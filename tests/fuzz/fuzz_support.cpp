@@ -52,6 +52,7 @@ bool all_finite(const double *v, int n) {
 void die(const std::string &what) {
     std::fprintf(stderr, "fuzz target: %s\n  last error: %s\n", what.c_str(), ppm_last_error_message());
     std::fflush(stderr);
+    remove_temp_dir();
     std::abort();
 }
 
@@ -125,7 +126,8 @@ void check_geometry_scene(ppm_scene scene) {
     camera.width = camera.height = kFilmSize;
 
     // Rays from the camera position through the box: hits must be finite and in range.
-    const double intensity = distance * distance;
+    // Bright enough to light the scene at its size, within the limit of light values.
+    const double intensity = std::fmin(distance * distance, 1e18);
     if (!all_finite(camera.origin, 3) || !std::isfinite(intensity)) return;
     std::vector<ppm_ray> rays(16);
     for (size_t i = 0; i < rays.size(); ++i) {
