@@ -11,10 +11,20 @@
 #    find_package(ppm) and with pkg-config.
 # 4. Python: pip-installs bindings/python against that prefix into a temporary venv and runs
 #    its pytest tests (each test counts in the summary; a failed pip install counts as one).
+# 5. With --tsan only: scripts/tsan.sh, the ThreadSanitizer build in build-tsan/ and the tests
+#    labelled "threads" under it, every report fatal (counts as one check).
 # Exits non-zero if anything failed; the last line sums up ctest tests and package checks.
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 cd "$PPM_ROOT"
+
+run_tsan=0
+for arg in "$@"; do
+  case "$arg" in
+  --tsan) run_tsan=1 ;;
+  *) ppm_die "unknown option '$arg' (usage: bash scripts/test.sh [--tsan])" ;;
+  esac
+done
 
 passed=0
 failed=0
@@ -251,5 +261,17 @@ else
   fail "python: venv or pip install ./bindings/python"
 fi
 echo "python step: $((SECONDS - python_started)) s"
+
+# ---------------------------------------------------------------------------------------------
+if ((run_tsan)); then
+  ppm_step "ThreadSanitizer (scripts/tsan.sh)"
+  tsan_started=$SECONDS
+  if bash scripts/tsan.sh; then
+    pass "ThreadSanitizer: the threads tests ran without a report"
+  else
+    fail "ThreadSanitizer: scripts/tsan.sh (a build step, a test, or a TSan report)"
+  fi
+  echo "ThreadSanitizer step: $((SECONDS - tsan_started)) s"
+fi
 
 finish

@@ -169,7 +169,7 @@ void oversized_header_is_refused_before_allocating(void **) {
         Texture::load(path);
         fail_msg("oversized texture loaded");
     } catch (const Error &e) {
-        assert_int_equal(e.status(), PPM_ERROR_PARSE);
+        if (e.status() != PPM_ERROR_PARSE) fail_msg("status %d: %s", e.status(), e.what());
         assert_non_null(std::strstr(e.what(), "its header claims 10000 x 10000 pixels, more than its 19 bytes can hold"));
     }
     std::remove(path.c_str());

@@ -33,7 +33,9 @@ std::vector<ppm::BezierPatch> read_patches(const double *control_points, size_t 
     if (patch_count > ppm::max_bpt_patches)
         invalid_argument("patch_count " + std::to_string(patch_count) + " exceeds the limit of " +
                          std::to_string(ppm::max_bpt_patches));
-    std::vector<ppm::BezierPatch> patches(patch_count);
+    std::vector<ppm::BezierPatch> patches;
+    ppm::allocate_or_fail(std::to_string(patch_count) + " Bezier patches", patch_count * sizeof(ppm::BezierPatch),
+                          [&] { patches.resize(patch_count); });
     for (size_t p = 0; p < patch_count; ++p)
         for (int k = 0; k < 16; ++k) {
             patches[p].p[k] = ppm::Vec3::from(control_points + (p * 16 + k) * 3);
@@ -241,7 +243,16 @@ ppm_status ppm_scene_add_triangle_mesh(ppm_scene scene, const double *positions,
         if (vertex_count >= PPM_INVALID_ID || triangle_count >= PPM_INVALID_ID / 3)
             invalid_argument("mesh is too large (at most 2^32 - 1 vertices and 2^32 / 3 triangles)");
         ppm::MeshData mesh;
-        mesh.positions.resize(vertex_count);
+        const std::uint64_t vertex_bytes = sizeof(ppm::Vec3) * (normals ? 2 : 1) + (uvs ? 2 * sizeof(double) : 0);
+        const std::uint64_t mesh_bytes = vertex_count * vertex_bytes + triangle_count * 3 * sizeof(uint32_t);
+        ppm::allocate_or_fail("a mesh of " + std::to_string(vertex_count) + " vertices and " +
+                                  std::to_string(triangle_count) + " triangles",
+                              mesh_bytes, [&] {
+                                  mesh.positions.resize(vertex_count);
+                                  mesh.indices.reserve(3 * triangle_count);
+                                  if (normals) mesh.normals.reserve(vertex_count);
+                                  if (uvs) mesh.uvs.reserve(2 * vertex_count);
+                              });
         for (size_t k = 0; k < vertex_count; ++k) {
             mesh.positions[k] = ppm::Vec3::from(positions + 3 * k);
             if (!ppm::is_finite(mesh.positions[k]))

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <vector>
@@ -31,6 +32,10 @@ void write_file_atomically(const std::string &path, const void *data, std::size_
             if (errno == EINTR) continue;
             give_up("write error");
         }
+        if (n == 0) { // no progress and no error: a device that takes nothing more
+            errno = ENOSPC;
+            give_up("write error");
+        }
         written += static_cast<std::size_t>(n);
     }
     // mkstemp creates the file 0600; make it an ordinary readable file (reading the umask
@@ -45,6 +50,15 @@ void write_file_atomically(const std::string &path, const void *data, std::size_
         const int error = errno;
         std::remove(temp_name.c_str());
         fail(PPM_ERROR_IO, path + ": cannot replace it: " + std::strerror(error));
+    }
+    // The rename is durable only once the folder's entry is on disk. Best effort: the file is
+    // already complete and in place, and some file systems cannot sync a folder.
+    const std::size_t slash = path.rfind('/');
+    const std::string folder = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+    const int folder_fd = open(folder.c_str(), O_RDONLY | O_DIRECTORY);
+    if (folder_fd >= 0) {
+        fsync(folder_fd);
+        close(folder_fd);
     }
 }
 

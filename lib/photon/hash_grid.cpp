@@ -202,7 +202,16 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count, const HitPoi
         entries_.reset(); // first: the old and the new buffer are never held at once
         entries_capacity_ = 0;
         const std::uint64_t capacity = total + total / 8;
-        entries_.reset(new Entry[capacity]);
+        allocate_or_fail("the hit point grid's " + std::to_string(capacity) + " cell entries",
+                         capacity * sizeof(Entry), [&] {
+                             try {
+                                 entries_.reset(new Entry[capacity]);
+                             } catch (...) {
+                                 size_ = 0; // empty, as the build promises when it throws
+                                 bucket_start_.clear();
+                                 throw;
+                             }
+                         });
         entries_capacity_ = capacity;
     }
     tbb::parallel_for(std::size_t(0), chunk_count, [&](std::size_t c) {

@@ -257,9 +257,14 @@ void Renderer::load_checkpoint(const std::string &path) {
     check_counts(path, passes, emitted, slots);
     if (slots == 0) return; // saved before any pass completed: nothing to restore
 
-    std::vector<std::uint32_t> pixels(slots);
+    std::vector<std::uint32_t> pixels;
+    std::vector<PixelStatistics> stats;
+    allocate_or_fail(path + ": the checkpoint's " + std::to_string(slots) + " pixel slots",
+                     slots * (sizeof(std::uint32_t) + sizeof(PixelStatistics)), [&] {
+                         pixels.resize(slots);
+                         stats.resize(slots);
+                     });
     r.get_bytes(pixels.data(), slots * sizeof(std::uint32_t), "slots");
-    std::vector<PixelStatistics> stats(slots);
     for (PixelStatistics &s : stats) {
         double v[8];
         r.get_bytes(v, sizeof v, "statistics");

@@ -2,6 +2,7 @@
 // purely specular, where a visible point is stored and its direct light estimated.
 #include "render/renderer.h"
 
+#include "core/error.h"
 #include "scene/scene.h"
 #include "scene/spawn.h"
 
@@ -231,14 +232,32 @@ double Renderer::flux_scale() const {
 
 void Renderer::init_pixel_slots() {
     const std::uint32_t pixels = static_cast<std::uint32_t>(camera_.width()) * camera_.height();
-    slot_pixel_.resize(pixels);
-    for (std::uint32_t p = 0; p < pixels; ++p) slot_pixel_[p] = p;
-    stats_.assign(pixels, PixelStatistics{});
-    visible_.clear();
-    hit_points_.assign(pixels, HitPoint{});
-    gather_.resize(pixels);
-    pass_direct_.assign(pixels, Rgb());
-    flux_ = std::make_unique<FluxAccumulator>(pixels, flux_scale());
+    // Each slot's state: pixel index, statistics, hit point, gather point, direct light and
+    // the flux accumulator's cache line.
+    constexpr std::uint64_t slot_bytes = sizeof(std::uint32_t) + sizeof(PixelStatistics) + sizeof(HitPoint) +
+                                         sizeof(GatherPoint) + sizeof(Rgb) + 64;
+    // Built aside and moved in, so that a failed allocation leaves the renderer as it was;
+    // the largest arrays first, so that a film too large fails before any memory is filled.
+    allocate_or_fail(film_description(), pixels * slot_bytes, [&] {
+        auto flux = std::make_unique<FluxAccumulator>(pixels, flux_scale());
+        std::vector<GatherPoint> gather(pixels);
+        std::vector<PixelStatistics> stats(pixels, PixelStatistics{});
+        std::vector<HitPoint> hit_points(pixels, HitPoint{});
+        std::vector<Rgb> pass_direct(pixels, Rgb());
+        std::vector<std::uint32_t> slot_pixel(pixels);
+        for (std::uint32_t p = 0; p < pixels; ++p) slot_pixel[p] = p;
+        visible_.clear();
+        slot_pixel_ = std::move(slot_pixel);
+        stats_ = std::move(stats);
+        hit_points_ = std::move(hit_points);
+        gather_ = std::move(gather);
+        pass_direct_ = std::move(pass_direct);
+        flux_ = std::move(flux);
+    });
+}
+
+std::string Renderer::film_description() const {
+    return "the film of " + std::to_string(camera_.width()) + " x " + std::to_string(camera_.height()) + " pixels";
 }
 
 std::optional<HitPointBounds> Renderer::eye_pass(std::uint32_t pass) {
@@ -269,9 +288,31 @@ std::optional<HitPointBounds> Renderer::eye_pass(std::uint32_t pass) {
         return eye_bounds;
     }
 
-    // PPM: the first pass fixes the slots. Rows are traced in parallel into their own lists,
-    // joined in row order so slot numbers do not depend on scheduling.
+    // PPM: the first pass fixes the slots, at least one per pixel. A failed allocation leaves
+    // no slots, so that the next pass starts over.
+    constexpr std::uint64_t min_slot_bytes = sizeof(std::uint32_t) + sizeof(VisiblePoint) + sizeof(PixelStatistics) +
+                                             sizeof(HitPoint) + sizeof(GatherPoint) + 2 * sizeof(Rgb) + 64;
+    allocate_or_fail("the first PPM pass's hit points (at least this, one per pixel of " + film_description() + ")",
+                     std::uint64_t(pixels) * min_slot_bytes, [&] {
+                         try {
+                             init_ppm_slots();
+                         } catch (...) {
+                             slot_pixel_.clear();
+                             flux_.reset();
+                             throw;
+                         }
+                     });
+    return std::nullopt; // the fixed points are stored and measured by build_search()
+}
+
+// Rows are traced in parallel into their own lists, joined in row order so slot numbers do not
+// depend on scheduling.
+void Renderer::init_ppm_slots() {
     const int width = camera_.width(), height = camera_.height();
+    // The room for one slot per pixel first: a film too large fails now, not after tracing it.
+    const std::size_t pixels = static_cast<std::size_t>(width) * height;
+    slot_pixel_.reserve(pixels), visible_.reserve(pixels), fixed_emitted_.reserve(pixels);
+    stats_.reserve(pixels), hit_points_.reserve(pixels), gather_.reserve(pixels), pass_direct_.reserve(pixels);
     std::vector<SplitPaths> rows(height);
     std::vector<std::vector<std::uint32_t>> row_pixels(height);
     std::vector<std::vector<Rgb>> row_emitted(height);
@@ -310,7 +351,6 @@ std::optional<HitPointBounds> Renderer::eye_pass(std::uint32_t pass) {
     gather_.resize(slot_pixel_.size());
     pass_direct_.assign(slot_pixel_.size(), Rgb());
     flux_ = std::make_unique<FluxAccumulator>(slot_pixel_.size(), flux_scale());
-    return std::nullopt; // the fixed points are stored and measured by build_search()
 }
 
 void Renderer::direct_pass(std::uint32_t pass) {

@@ -147,6 +147,10 @@ void Renderer::read_layer(const std::string &name, float *out) const {
     std::fill(out, out + pixels * channels, 0.0f);
     std::lock_guard<std::mutex> lock(stats_mutex_);
     const std::uint64_t emitted = photons_emitted_.load(), passes = passes_.load();
+    // Until a pass completes, the running pass makes the slots and statistics without this
+    // lock (init_pixel_slots, PPM's first eye pass): there is nothing to read yet, and
+    // touching them would race. passes_ grows under the lock once they are final.
+    if (passes == 0) return;
     for (size_t slot = 0; slot < slot_pixel_.size(); ++slot) {
         const PixelStatistics &s = stats_[slot];
         float *pixel = out + static_cast<size_t>(slot_pixel_[slot]) * channels;

@@ -40,6 +40,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace ppm {
@@ -124,6 +125,8 @@ private:
     // cache); PPM's fixed points are stored and measured by build_search().
     std::optional<HitPointBounds> eye_pass(std::uint32_t pass);
     void init_pixel_slots(); // SPPM: one slot per pixel, statistics zero
+    void init_ppm_slots();   // PPM: the first eye pass's split paths, traced in parallel
+    std::string film_description() const; // "the film of W x H pixels", for messages
     double flux_scale() const; // for the FluxAccumulator
     void photon_pass(std::uint32_t pass);
     void direct_pass(std::uint32_t pass); // PPM: direct light again at the fixed points
@@ -190,7 +193,8 @@ private:
 
     std::atomic<std::uint64_t> passes_{0};
     std::atomic<std::uint64_t> photons_emitted_{0};
-    double last_eye_seconds_ = 0, last_photon_seconds_ = 0, last_search_build_seconds_ = 0;
+    // Atomic like the counters above: a progress display may read them during a pass.
+    std::atomic<double> last_eye_seconds_{0}, last_photon_seconds_{0}, last_search_build_seconds_{0};
     std::atomic<bool> cancel_requested_{false};
     std::mutex pass_mutex_;           // one pass at a time
     mutable std::mutex stats_mutex_;  // readers against the end-of-pass update

@@ -99,11 +99,16 @@ std::shared_ptr<const Texture> Texture::load(const std::string &path) {
                                   std::to_string(spec.height) + " pixels, more than its " +
                                   std::to_string(static_cast<long long>(file_bytes)) + " bytes can hold");
     const int channels = std::min(spec.nchannels, 3);
-    std::vector<float> data(static_cast<size_t>(pixels) * channels);
+    std::vector<float> data, rgb;
+    allocate_or_fail("texture '" + path + "' of " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+                         " pixels",
+                     static_cast<std::uint64_t>(pixels) * (channels + 3) * sizeof(float), [&] {
+                         data.resize(static_cast<size_t>(pixels) * channels);
+                         rgb.resize(static_cast<size_t>(pixels) * 3);
+                     });
     if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
         fail(PPM_ERROR_IO, "texture '" + path + "': " + input->geterror());
     const bool srgb = is_srgb_encoded(spec);
-    std::vector<float> rgb(static_cast<size_t>(pixels) * 3);
     for (long long i = 0; i < pixels; ++i)
         for (int c = 0; c < 3; ++c) {
             const float value = data[i * channels + std::min(c, channels - 1)];

@@ -67,7 +67,16 @@ public:
     Rgb emission; // area light radiance (quads and spheres only), black if none
 };
 
-// Pads a box so Embree's single-precision traversal keeps it (see EmbreeFrame).
+// Pads a box so Embree's single-precision traversal keeps it (see EmbreeFrame). Every bounds
+// callback ends here.
 void write_embree_bounds(const Box3 &world, const EmbreeFrame &frame, RTCBounds &out);
+
+// For ThreadSanitizer builds; a no-op otherwise. rtcCommitScene runs the bounds callbacks on
+// TBB workers and waits for them through TBB code inlined into Embree, which TSan cannot see
+// (Debian's Embree is not instrumented), so it would take every later write to the data they
+// read for a race. write_embree_bounds releases, and the scene calls this after
+// rtcCommitScene returns, when every callback has finished: the join Embree performs becomes
+// visible to TSan.
+void embree_build_joined();
 
 } // namespace ppm

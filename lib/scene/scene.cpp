@@ -178,6 +178,7 @@ void Scene::commit() {
             context_->check_embree("rtcAttachGeometryByID");
         }
         context_->run([&] { rtcCommitScene(rtc); });
+        embree_build_joined();
         context_->check_embree("rtcCommitScene");
     } catch (...) {
         rtcReleaseScene(rtc);

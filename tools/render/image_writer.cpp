@@ -1,14 +1,12 @@
 #include "image_writer.h"
 
+#include "atomic_write.h"
+
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <stdexcept>
 
 namespace ppm_render {
@@ -40,23 +38,25 @@ bool is_float_format(const std::string &path) {
 void check_image_format(const std::string &path) {
     if (lower_extension(path).empty())
         throw std::runtime_error(path + ": no file extension to tell the image format (.exr, .png, ...)");
-    if (!OIIO::ImageOutput::create(path))
-        throw std::runtime_error(path + ": OpenImageIO cannot write this format: " + OIIO::geterror());
+    const auto out = OIIO::ImageOutput::create(path);
+    if (!out) throw std::runtime_error(path + ": OpenImageIO cannot write this format: " + OIIO::geterror());
+    if (!out->supports("ioproxy"))
+        throw std::runtime_error(path + ": OpenImageIO cannot write this format to memory, which atomic writing needs");
 }
 
+// The image is encoded in memory and written by write_bytes_atomically, which checks every
+// write, the sync and the close: OpenImageIO ignores a failure to close its file, so letting it
+// write the temporary file could rename a truncated image over a good one.
 void write_image_atomically(const std::string &path, const Image &image, double exposure) {
     check_image_format(path);
     const std::string ext = lower_extension(path);
-    const std::size_t slash = path.rfind('/');
-    const std::string folder = slash == std::string::npos ? "" : path.substr(0, slash + 1);
-    const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-    const std::string temp = folder + "." + name + ".tmp-" + std::to_string(getpid()) + "." + ext;
-
     const std::size_t pixels = static_cast<std::size_t>(image.width) * image.height;
-    auto out = OIIO::ImageOutput::create(temp);
+    auto out = OIIO::ImageOutput::create(path);
     if (!out) throw std::runtime_error(path + ": OpenImageIO cannot write this format: " + OIIO::geterror());
+    std::vector<unsigned char> encoded;
+    OIIO::Filesystem::IOVecOutput memory(encoded);
+    bool ok = out->set_ioproxy(&memory);
 
-    bool ok = false;
     if (is_float_format(path)) {
         const bool with_layers = ext == "exr" && !image.layers.empty();
         const int channels = 3 + (with_layers ? static_cast<int>(image.layers.size()) : 0);
@@ -71,7 +71,7 @@ void write_image_atomically(const std::string &path, const Image &image, double 
             for (int c = 0; c < 3; ++c) pixels_out[p * channels + c] = image.radiance[p * 3 + c];
             for (int l = 3; l < channels; ++l) pixels_out[p * channels + l] = image.layers[l - 3].data[p];
         }
-        ok = out->open(temp, spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels_out.data());
+        ok = ok && out->open(path, spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels_out.data());
     } else {
         OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
         spec.attribute("oiio:ColorSpace", "sRGB");
@@ -79,20 +79,15 @@ void write_image_atomically(const std::string &path, const Image &image, double 
         std::vector<unsigned char> pixels_out(pixels * 3);
         for (std::size_t i = 0; i < pixels * 3; ++i)
             pixels_out[i] = static_cast<unsigned char>(std::lround(255.0f * linear_to_srgb(image.radiance[i] * scale)));
-        ok = out->open(temp, spec) && out->write_image(OIIO::TypeDesc::UINT8, pixels_out.data());
+        ok = ok && out->open(path, spec) && out->write_image(OIIO::TypeDesc::UINT8, pixels_out.data());
     }
     const std::string error = ok ? std::string() : out->geterror();
     ok = out->close() && ok;
     out.reset();
-    if (!ok) {
-        std::remove(temp.c_str());
-        throw std::runtime_error(path + ": cannot write the image: " + (error.empty() ? std::string("unknown error") : error));
-    }
-    if (std::rename(temp.c_str(), path.c_str()) != 0) {
-        const std::string reason = std::strerror(errno);
-        std::remove(temp.c_str());
-        throw std::runtime_error(path + ": cannot replace it: " + reason);
-    }
+    if (!ok || encoded.empty())
+        throw std::runtime_error(path + ": cannot encode the image: " +
+                                 (error.empty() ? std::string("unknown error") : error));
+    write_bytes_atomically(path, encoded.data(), encoded.size());
 }
 
 } // namespace ppm_render

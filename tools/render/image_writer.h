@@ -1,5 +1,5 @@
-// Writes the renderer's image through OpenImageIO, atomically: to a temporary file beside the
-// target (same extension, so OIIO picks the same format), then renamed over it. A viewer or a
+// Writes the renderer's image through OpenImageIO, atomically: encoded in memory, written to a
+// temporary file beside the target, synced and renamed over it. A viewer or a
 // crash sees the previous image or the new one, never half of one.
 #pragma once
 

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
+#include <new>
 #include <string>
 #include <thread>
 
@@ -55,13 +56,17 @@ Image read_image(ppm_renderer renderer, const Options &options) {
     image.width = static_cast<int>(width);
     image.height = static_cast<int>(height);
     const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-    image.radiance.resize(pixels * 3);
-    check(ppm_renderer_get_layer(renderer, "radiance", image.radiance.data(), image.radiance.size()));
-    for (const std::string &name : options.layers) {
-        Layer layer{name, std::vector<float>(pixels)};
-        check(ppm_renderer_get_layer(renderer, name.c_str(), layer.data.data(), layer.data.size()));
-        image.layers.push_back(std::move(layer));
+    try {
+        image.radiance.resize(pixels * 3);
+        for (const std::string &name : options.layers) image.layers.push_back(Layer{name, std::vector<float>(pixels)});
+    } catch (const std::bad_alloc &) {
+        const std::size_t floats = pixels * (3 + options.layers.size());
+        throw ApiError{"out of memory for the image of " + std::to_string(width) + " x " + std::to_string(height) +
+                       " pixels: " + std::to_string(floats * sizeof(float)) + " bytes"};
     }
+    check(ppm_renderer_get_layer(renderer, "radiance", image.radiance.data(), image.radiance.size()));
+    for (Layer &layer : image.layers)
+        check(ppm_renderer_get_layer(renderer, layer.name.c_str(), layer.data.data(), layer.data.size()));
     return image;
 }
 
@@ -182,9 +187,17 @@ int render(const Options &options, SignalWatcher &signals) {
         }
         if (status != PPM_OK) {
             progress.finish();
-            const std::string message = ppm_last_error_message();
-            write_images(renderer, options);
-            throw ApiError{"pass " + std::to_string(passes + 1) + ": " + message};
+            std::string message = "pass " + std::to_string(passes + 1) + ": " + ppm_last_error_message();
+            // The completed passes' image is still written; failing to write it must not hide
+            // why the pass failed (out of memory, typically, when the image cannot be read).
+            try {
+                write_images(renderer, options);
+            } catch (const ApiError &e) {
+                message += "; then " + e.message;
+            } catch (const std::exception &e) {
+                message += "; then " + std::string(e.what());
+            }
+            throw ApiError{message};
         }
         last_pass_seconds = seconds_since(pass_start);
         ++passes;
