@@ -158,6 +158,32 @@ void truncated_png_is_a_quiet_io_error(void **) {
     }
 }
 
+// An OpenEXR header attribute whose size runs past the end of the file is refused before
+// OpenEXR allocates it (23 bytes claiming a 1.8 GB string); a real EXR still loads.
+void exr_attribute_beyond_the_file_is_refused(void **) {
+    const std::string path = temp_path("attribute.exr");
+    std::FILE *f = std::fopen(path.c_str(), "wb");
+    std::fwrite("v/1\x01\x02\x00\x00\x00" "a\x00string\x00\x7c\x00\x00\x6fxx", 1, 23, f);
+    std::fclose(f);
+    try {
+        Texture::load(path);
+        fail_msg("corrupt EXR loaded");
+    } catch (const Error &e) {
+        assert_int_equal(e.status(), PPM_ERROR_IO);
+        assert_non_null(std::strstr(e.what(), "attribute.exr' is a corrupt or truncated OpenEXR file: its header "
+                                              "attribute 'a' claims 1862271100 bytes, the file has 23"));
+    }
+    const float pixels[12] = {0.5f, 1, 2, 0, 0, 0, 1, 1, 1, 4, 3, 2};
+    auto out = OIIO::ImageOutput::create(path);
+    assert_non_null(out.get());
+    assert_true(out->open(path, OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::HALF)));
+    assert_true(out->write_image(OIIO::TypeDesc::FLOAT, pixels));
+    out->close();
+    const auto texture = Texture::load(path);
+    assert_close(texture->lookup(0.25, 0.25).b, 2.0, 1e-6);
+    std::remove(path.c_str());
+}
+
 // A header that claims more pixels than the file's bytes can hold is refused before anything
 // of that size is allocated (here 10000 x 10000 RGB, 300 MB, from a file of 19 bytes).
 void oversized_header_is_refused_before_allocating(void **) {
@@ -193,6 +219,7 @@ int main() {
         cmocka_unit_test(material_applies_mapping_and_keeps_energy),
         cmocka_unit_test(bad_files_are_clear_errors),
         cmocka_unit_test(truncated_png_is_a_quiet_io_error),
+        cmocka_unit_test(exr_attribute_beyond_the_file_is_refused),
         cmocka_unit_test(oversized_header_is_refused_before_allocating),
         cmocka_unit_test(obj_texture_coordinates_follow_the_obj_convention),
     };

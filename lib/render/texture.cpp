@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -72,6 +73,39 @@ void check_png_is_complete(const std::string &path) {
     }
 }
 
+// OpenEXR 3.1 allocates (and zero-fills) every header attribute at the size the file states
+// before reading it, so 23 bytes can make it take 2 GB. The first header is walked first:
+// every attribute (name, type, 32-bit size, value) must lie inside the file. Anything this
+// walk cannot follow is left to OpenEXR.
+void check_exr_header_fits(const std::string &path) {
+    std::unique_ptr<std::FILE, int (*)(std::FILE *)> file(std::fopen(path.c_str(), "rb"), std::fclose);
+    if (!file) return;
+    // A header is a few kilobytes at most; reading 64 KiB covers it.
+    std::string bytes(1 << 16, '\0');
+    bytes.resize(std::fread(&bytes[0], 1, bytes.size(), file.get()));
+    if (bytes.size() < 8 || bytes.compare(0, 4, "v/1\x01") != 0 || std::fseek(file.get(), 0, SEEK_END) != 0) return;
+    const long long size = std::ftell(file.get());
+    std::size_t at = 8;
+    const auto skip_string = [&]() {
+        const std::size_t end = bytes.find('\0', at);
+        if (end == std::string::npos || end - at > 255) return false;
+        at = end + 1;
+        return true;
+    };
+    while (at < bytes.size() && bytes[at] != '\0') {
+        const std::size_t name_at = at;
+        if (!skip_string() || !skip_string() || at + 4 > bytes.size()) return;
+        std::int32_t length;
+        std::memcpy(&length, &bytes[at], sizeof length); // little-endian, as on every host we build for
+        at += 4;
+        if (length < 0 || static_cast<long long>(at) + length > size)
+            fail(PPM_ERROR_IO, "texture '" + path + "' is a corrupt or truncated OpenEXR file: its header attribute '" +
+                                   std::string(bytes.c_str() + name_at) + "' claims " + std::to_string(length) +
+                                   " bytes, the file has " + std::to_string(size));
+        at += static_cast<std::size_t>(length);
+    }
+}
+
 // The largest ratio of decoded to stored bytes of the codecs image files use: DEFLATE (PNG,
 // EXR's ZIP) expands at most 1032:1; RLE, PIZ and JPEG less.
 constexpr double kMaxExpansion = 1032;
@@ -80,6 +114,7 @@ constexpr double kMaxExpansion = 1032;
 
 std::shared_ptr<const Texture> Texture::load(const std::string &path) {
     check_png_is_complete(path);
+    check_exr_header_fits(path);
     auto input = OIIO::ImageInput::open(path);
     if (!input) fail(PPM_ERROR_IO, "texture '" + path + "': " + OIIO::geterror());
     const OIIO::ImageSpec &spec = input->spec();
