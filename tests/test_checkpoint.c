@@ -312,6 +312,47 @@ static void test_counts_that_disagree_are_refused(void **state) {
     expect_load_error(f, crafted, PPM_ERROR_PARSE, "no pass recorded, but 5000 photons emitted");
 }
 
+/* Flux in a slot without a radius: the next pass gives the slot the initial radius and
+ * keeps the flux, so a crafted flux would become an infinite pixel. */
+static void test_flux_without_radius_is_refused(void **state) {
+    fixture *f = *state;
+    ppm_renderer r = new_renderer(f, "sppm");
+    run_passes(r, 1);
+    assert_int_equal(ppm_renderer_save_checkpoint(r, f->path), PPM_OK);
+    ppm_renderer_release(r);
+    char crafted[320];
+    snprintf(crafted, sizeof crafted, "%s/crafted.ppmckpt", f->folder);
+    size_t size;
+    unsigned char *bytes = read_all(f->path, &size);
+    uint64_t slots;
+    memcpy(&slots, bytes + slots_at, sizeof slots);
+    const double values[3] = {0, 0, 1e30}; /* N, R^2, tau red */
+    memcpy(bytes + header_bytes + slots * 4 + 7 * 8 * sizeof(double), values, sizeof values);
+    write_with_checksum(crafted, bytes, size - 8);
+    free(bytes);
+    expect_load_error(f, crafted, PPM_ERROR_PARSE, "pixel slot 7: flux tau = 1e+30 (must be 0 where no radius was set)");
+}
+
+/* Counts beyond int64_t, which ppm_renderer_get_int would report as negative, with the
+ * statistics kept so that only the counts are wrong. */
+static void test_counts_beyond_int64_are_refused(void **state) {
+    fixture *f = *state;
+    ppm_renderer r = new_renderer(f, "sppm");
+    run_passes(r, 1);
+    assert_int_equal(ppm_renderer_save_checkpoint(r, f->path), PPM_OK);
+    ppm_renderer_release(r);
+    char crafted[320];
+    snprintf(crafted, sizeof crafted, "%s/crafted.ppmckpt", f->folder);
+    size_t size;
+    unsigned char *bytes = read_all(f->path, &size);
+    const uint64_t most = UINT64_MAX;
+    memcpy(bytes + passes_at, &most, sizeof most);
+    memcpy(bytes + emitted_at, &most, sizeof most);
+    write_with_checksum(crafted, bytes, size - 8);
+    free(bytes);
+    expect_load_error(f, crafted, PPM_ERROR_PARSE, "18446744073709551615 photons emitted, more than 2^63 - 1");
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_resume_equals_uninterrupted_sppm, setup, teardown),
@@ -320,6 +361,8 @@ int main(void) {
         cmocka_unit_test_setup_teardown(test_bad_checkpoints_are_refused, setup, teardown),
         cmocka_unit_test_setup_teardown(test_implausible_statistics_are_refused, setup, teardown),
         cmocka_unit_test_setup_teardown(test_counts_that_disagree_are_refused, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_counts_beyond_int64_are_refused, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_flux_without_radius_is_refused, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -92,6 +92,98 @@ void bad_files_are_clear_errors(void **) {
     std::remove(path.c_str());
 }
 
+// Runs load(path) with stderr sent to a file; returns what was written there.
+std::string stderr_of_load(const std::string &path, ppm_status *status, std::string *message) {
+    const std::string captured = temp_path("stderr.txt");
+    std::fflush(stderr);
+    const int saved = dup(2);
+    std::FILE *sink = std::fopen(captured.c_str(), "wb");
+    assert_non_null(sink);
+    dup2(fileno(sink), 2);
+    *status = PPM_OK;
+    try {
+        Texture::load(path);
+    } catch (const Error &e) {
+        *status = e.status();
+        *message = e.what();
+    }
+    std::fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+    std::fclose(sink);
+    std::FILE *in = std::fopen(captured.c_str(), "rb");
+    std::string text;
+    for (int c; (c = std::fgetc(in)) != EOF;) text += static_cast<char>(c);
+    std::fclose(in);
+    std::remove(captured.c_str());
+    return text;
+}
+
+// A PNG cut short (an interrupted copy) is an IO error naming the file and the cut, and
+// neither libpng nor OpenImageIO prints anything or leaks (the ASan build checks the leak).
+void truncated_png_is_a_quiet_io_error(void **) {
+    const std::string whole = temp_path("whole.png");
+    {
+        unsigned char pixels[16 * 16 * 3];
+        for (size_t i = 0; i < sizeof pixels; ++i) pixels[i] = static_cast<unsigned char>(i * 7 % 251);
+        auto out = OIIO::ImageOutput::create(whole);
+        assert_non_null(out.get());
+        assert_true(out->open(whole, OIIO::ImageSpec(16, 16, 3, OIIO::TypeDesc::UINT8)));
+        assert_true(out->write_image(OIIO::TypeDesc::UINT8, pixels));
+        out->close();
+    }
+    std::FILE *in = std::fopen(whole.c_str(), "rb");
+    std::string bytes;
+    for (int c; (c = std::fgetc(in)) != EOF;) bytes += static_cast<char>(c);
+    std::fclose(in);
+    std::remove(whole.c_str());
+    assert_true(bytes.size() > 100);
+
+    // Cut inside the image data, and cut just before the closing IEND chunk (12 bytes).
+    const size_t cuts[2] = {bytes.size() / 2, bytes.size() - 12};
+    const char *expected[2] = {"runs to byte", "no IEND chunk"};
+    for (int k = 0; k < 2; ++k) {
+        const std::string path = temp_path("truncated.png");
+        std::FILE *f = std::fopen(path.c_str(), "wb");
+        std::fwrite(bytes.data(), 1, cuts[k], f);
+        std::fclose(f);
+        ppm_status status;
+        std::string message;
+        const std::string printed = stderr_of_load(path, &status, &message);
+        std::remove(path.c_str());
+        assert_int_equal(status, PPM_ERROR_IO);
+        assert_non_null(std::strstr(message.c_str(), "truncated.png' is a truncated PNG"));
+        assert_non_null(std::strstr(message.c_str(), expected[k]));
+        assert_string_equal(printed.c_str(), "");
+    }
+}
+
+// An OpenEXR header attribute whose size runs past the end of the file is refused before
+// OpenEXR allocates it (23 bytes claiming a 1.8 GB string); a real EXR still loads.
+void exr_attribute_beyond_the_file_is_refused(void **) {
+    const std::string path = temp_path("attribute.exr");
+    std::FILE *f = std::fopen(path.c_str(), "wb");
+    std::fwrite("v/1\x01\x02\x00\x00\x00" "a\x00string\x00\x7c\x00\x00\x6fxx", 1, 23, f);
+    std::fclose(f);
+    try {
+        Texture::load(path);
+        fail_msg("corrupt EXR loaded");
+    } catch (const Error &e) {
+        assert_int_equal(e.status(), PPM_ERROR_IO);
+        assert_non_null(std::strstr(e.what(), "attribute.exr' is a corrupt or truncated OpenEXR file: its header "
+                                              "attribute 'a' claims 1862271100 bytes, the file has 23"));
+    }
+    const float pixels[12] = {0.5f, 1, 2, 0, 0, 0, 1, 1, 1, 4, 3, 2};
+    auto out = OIIO::ImageOutput::create(path);
+    assert_non_null(out.get());
+    assert_true(out->open(path, OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::HALF)));
+    assert_true(out->write_image(OIIO::TypeDesc::FLOAT, pixels));
+    out->close();
+    const auto texture = Texture::load(path);
+    assert_close(texture->lookup(0.25, 0.25).b, 2.0, 1e-6);
+    std::remove(path.c_str());
+}
+
 // A header that claims more pixels than the file's bytes can hold is refused before anything
 // of that size is allocated (here 10000 x 10000 RGB, 300 MB, from a file of 19 bytes).
 void oversized_header_is_refused_before_allocating(void **) {
@@ -126,6 +218,8 @@ int main() {
         cmocka_unit_test(srgb_png_decodes_to_linear_with_top_row_at_v0),
         cmocka_unit_test(material_applies_mapping_and_keeps_energy),
         cmocka_unit_test(bad_files_are_clear_errors),
+        cmocka_unit_test(truncated_png_is_a_quiet_io_error),
+        cmocka_unit_test(exr_attribute_beyond_the_file_is_refused),
         cmocka_unit_test(oversized_header_is_refused_before_allocating),
         cmocka_unit_test(obj_texture_coordinates_follow_the_obj_convention),
     };

@@ -91,6 +91,9 @@ private:
 // Every pass emits at least one photon and at most the largest photons_per_pass; statistics
 // exist exactly when a pass has completed.
 void check_counts(const std::string &path, std::uint64_t passes, std::uint64_t emitted, std::uint64_t slots) {
+    // The API reports both counts as int64_t; passes <= emitted is checked below.
+    if (emitted > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+        corrupt(path, std::to_string(emitted) + " photons emitted, more than 2^63 - 1");
     if (passes == 0 && (emitted != 0 || slots != 0))
         corrupt(path, "no pass recorded, but " + std::to_string(emitted) + " photons emitted and " +
                           std::to_string(slots) + " pixel slots");
@@ -129,6 +132,10 @@ void Renderer::check_statistics(const std::string &path, const std::vector<Pixel
         if (!(s.n >= 0 && s.n <= most_photons)) bad(i, "photon count N", s.n, "must lie in [0, photons emitted x 1000]");
         if (!(s.r2 >= 0 && s.r2 <= largest_r2)) bad(i, "radius squared", s.r2, "must lie in [0, the largest initial radius squared]");
         if (s.n > 0 && !(s.r2 > 0)) bad(i, "radius squared", s.r2, "must be > 0 where photons were found");
+        // A slot gets its radius before it gathers flux; the next pass would give a slot with
+        // r2 = 0 the initial radius and keep its flux.
+        if (s.r2 == 0 && !s.tau.is_black())
+            bad(i, "flux tau", std::max({s.tau.r, s.tau.g, s.tau.b}), "must be 0 where no radius was set");
         check_colour(i, "flux tau", s.tau);
         check_colour(i, "direct light", s.direct);
         const Rgb l = radiance_estimate(s, emitted, passes);

@@ -9,7 +9,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <cstring>
+#include <memory>
 
 namespace ppm {
 
@@ -35,6 +38,74 @@ bool is_srgb_encoded(const OIIO::ImageSpec &spec) {
            base != OIIO::TypeDesc::DOUBLE;
 }
 
+// OpenImageIO 2.4's PNG reader, on a file that ends early, lets libpng print "libpng error:
+// ... hit end of file" on stderr and leaks the message (its read callback holds a std::string
+// across libpng's longjmp). So a PNG is walked chunk by chunk first: every chunk up to IEND
+// must lie inside the file, and then libpng never reads past its end. Other formats, and
+// PNGs with bad content, are left to OpenImageIO.
+void check_png_is_complete(const std::string &path) {
+    std::unique_ptr<std::FILE, int (*)(std::FILE *)> file(std::fopen(path.c_str(), "rb"), std::fclose);
+    if (!file) return; // OpenImageIO names the problem
+    unsigned char header[8];
+    if (std::fread(header, 1, sizeof header, file.get()) != sizeof header ||
+        std::memcmp(header, "\x89PNG\r\n\x1a\n", sizeof header) != 0 || std::fseek(file.get(), 0, SEEK_END) != 0)
+        return;
+    const long long size = std::ftell(file.get());
+    const auto truncated = [&](const std::string &what) {
+        fail(PPM_ERROR_IO, "texture '" + path + "' is a truncated PNG: " + what + ", the file ends at byte " +
+                               std::to_string(size));
+    };
+    for (long long offset = 8;;) {
+        if (offset + 8 > size || std::fseek(file.get(), static_cast<long>(offset), SEEK_SET) != 0 ||
+            std::fread(header, 1, sizeof header, file.get()) != sizeof header)
+            truncated("no IEND chunk");
+        const long long length = static_cast<long long>(header[0]) << 24 | header[1] << 16 | header[2] << 8 | header[3];
+        const std::string type(reinterpret_cast<const char *>(header + 4), 4);
+        const bool named = std::all_of(type.begin(), type.end(),
+                                       [](char c) { return std::isalpha(static_cast<unsigned char>(c)); });
+        // Length, type, data and CRC.
+        const long long end = offset + 12 + length;
+        if (end > size)
+            truncated("the chunk " + (named ? type + " " : std::string()) + "at byte " + std::to_string(offset) +
+                      " runs to byte " + std::to_string(end));
+        if (type == "IEND") return;
+        offset = end;
+    }
+}
+
+// OpenEXR 3.1 allocates (and zero-fills) every header attribute at the size the file states
+// before reading it, so 23 bytes can make it take 2 GB. The first header is walked first:
+// every attribute (name, type, 32-bit size, value) must lie inside the file. Anything this
+// walk cannot follow is left to OpenEXR.
+void check_exr_header_fits(const std::string &path) {
+    std::unique_ptr<std::FILE, int (*)(std::FILE *)> file(std::fopen(path.c_str(), "rb"), std::fclose);
+    if (!file) return;
+    // A header is a few kilobytes at most; reading 64 KiB covers it.
+    std::string bytes(1 << 16, '\0');
+    bytes.resize(std::fread(&bytes[0], 1, bytes.size(), file.get()));
+    if (bytes.size() < 8 || bytes.compare(0, 4, "v/1\x01") != 0 || std::fseek(file.get(), 0, SEEK_END) != 0) return;
+    const long long size = std::ftell(file.get());
+    std::size_t at = 8;
+    const auto skip_string = [&]() {
+        const std::size_t end = bytes.find('\0', at);
+        if (end == std::string::npos || end - at > 255) return false;
+        at = end + 1;
+        return true;
+    };
+    while (at < bytes.size() && bytes[at] != '\0') {
+        const std::size_t name_at = at;
+        if (!skip_string() || !skip_string() || at + 4 > bytes.size()) return;
+        std::int32_t length;
+        std::memcpy(&length, &bytes[at], sizeof length); // little-endian, as on every host we build for
+        at += 4;
+        if (length < 0 || static_cast<long long>(at) + length > size)
+            fail(PPM_ERROR_IO, "texture '" + path + "' is a corrupt or truncated OpenEXR file: its header attribute '" +
+                                   std::string(bytes.c_str() + name_at) + "' claims " + std::to_string(length) +
+                                   " bytes, the file has " + std::to_string(size));
+        at += static_cast<std::size_t>(length);
+    }
+}
+
 // The largest ratio of decoded to stored bytes of the codecs image files use: DEFLATE (PNG,
 // EXR's ZIP) expands at most 1032:1; RLE, PIZ and JPEG less.
 constexpr double kMaxExpansion = 1032;
@@ -42,6 +113,8 @@ constexpr double kMaxExpansion = 1032;
 } // namespace
 
 std::shared_ptr<const Texture> Texture::load(const std::string &path) {
+    check_png_is_complete(path);
+    check_exr_header_fits(path);
     auto input = OIIO::ImageInput::open(path);
     if (!input) fail(PPM_ERROR_IO, "texture '" + path + "': " + OIIO::geterror());
     const OIIO::ImageSpec &spec = input->spec();
