@@ -410,8 +410,9 @@ PPM_API ppm_status ppm_scene_add_coated_material(ppm_scene scene, const double d
  * coordinates: (u, v) of spheres (spherical mapping), quads (planar) and patches (per patch,
  * or a patch set's rectangles), the vertex uvs of meshes. v = 0 is the image's top row (as in
  * Mitsuba 3). scale and offset may be NULL for (1, 1) and (0, 0).
- * Errors: INVALID_ARGUMENT (bad id, glass, non-finite or zero scale), IO (unreadable file; the
- * message names it). */
+ * Errors: INVALID_ARGUMENT (bad id, glass, non-finite or zero scale; more than 2^28 pixels;
+ * a NaN, infinite or negative texel), IO (unreadable or truncated file; the message names it),
+ * PARSE (a header that claims more pixels than the file's bytes can hold). */
 PPM_API ppm_status ppm_scene_set_material_texture(ppm_scene scene, uint32_t material_id, const char *path,
                                                   const double scale[2], const double offset[2]);
 
@@ -603,7 +604,9 @@ typedef struct ppm_scene_file_t *ppm_scene_file;
  * relative to the file's folder. Errors name the file, line, column and key
  * ("scene.json:14:9: bsdfs.glass.int_ior: expected a number > 0"): PARSE for JSON syntax,
  * wrong types, unknown keys and bad values; IO for a missing scene file or a missing file it
- * refers to (textures, OBJ, .bpt); INVALID_ARGUMENT for a NULL argument. The caller owns the
+ * refers to (textures, OBJ, .bpt); INVALID_ARGUMENT for a NULL argument, and, still located,
+ * for values the scene functions above refuse (degenerate geometry, coordinates or light
+ * values beyond their limits, a scene whose every geometry is degenerate). The caller owns the
  * one reference returned; the file holds one on its scene, which holds one on the context.
  * Thread safe with respect to other objects of the same context. A loaded file is
  * immutable: every call below is thread safe. */
