@@ -40,9 +40,7 @@ static void normalize(double v[3]) {
     v[2] /= length;
 }
 
-static double dot(const double a[3], const double b[3]) {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
+static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 int main(int argc, char **argv) {
     if (argc != 2 || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
@@ -56,8 +54,7 @@ int main(int argc, char **argv) {
     if (strcmp(argv[1], "--version") == 0) {
         /* PPM_VERSION_STRING is the header we compiled against, ppm_version_string() the
          * library actually loaded. */
-        printf("teapot_rays, built with libppm %s, running libppm %s\n", PPM_VERSION_STRING,
-               ppm_version_string());
+        printf("teapot_rays, built with libppm %s, running libppm %s\n", PPM_VERSION_STRING, ppm_version_string());
         return 0;
     }
 
@@ -83,18 +80,16 @@ int main(int argc, char **argv) {
     uint32_t geom_id;
     if (failed(ppm_scene_load_bpt(scene, argv[1], &geom_id), "ppm_scene_load_bpt")) goto cleanup;
     size_t patch_count;
-    if (failed(ppm_scene_get_primitive_count(scene, geom_id, &patch_count),
-               "ppm_scene_get_primitive_count"))
+    if (failed(ppm_scene_get_primitive_count(scene, geom_id, &patch_count), "ppm_scene_get_primitive_count"))
         goto cleanup;
 
     /* 3. Commit builds the acceleration structure; only then may the scene be queried. */
     if (failed(ppm_scene_commit(scene), "ppm_scene_commit")) goto cleanup;
     double lower[3], upper[3], tolerance;
     if (failed(ppm_scene_get_bounds(scene, lower, upper), "ppm_scene_get_bounds")) goto cleanup;
-    if (failed(ppm_scene_get_double(scene, "tolerance", &tolerance), "ppm_scene_get_double"))
-        goto cleanup;
-    printf("%s: %zu patches, bounds (%g %g %g) - (%g %g %g), tolerance %g\n", argv[1],
-           patch_count, lower[0], lower[1], lower[2], upper[0], upper[1], upper[2], tolerance);
+    if (failed(ppm_scene_get_double(scene, "tolerance", &tolerance), "ppm_scene_get_double")) goto cleanup;
+    printf("%s: %zu patches, bounds (%g %g %g) - (%g %g %g), tolerance %g\n", argv[1], patch_count, lower[0], lower[1],
+           lower[2], upper[0], upper[1], upper[2], tolerance);
 
     /* 4. A pinhole camera looking at the centre of the bounds from the front (-y) and a
      *    little above: forward is along +y and slightly down, right is +x, up is close to +z.
@@ -107,8 +102,7 @@ int main(int argc, char **argv) {
     double forward[3] = {0.0, 1.0, -0.35};
     normalize(forward);
     const double right[3] = {1.0, 0.0, 0.0};
-    const double up[3] = {right[1] * forward[2] - right[2] * forward[1],
-                          right[2] * forward[0] - right[0] * forward[2],
+    const double up[3] = {right[1] * forward[2] - right[2] * forward[1], right[2] * forward[0] - right[0] * forward[2],
                           right[0] * forward[1] - right[1] * forward[0]};
     double eye[3];
     for (int k = 0; k < 3; ++k) eye[k] = center[k] - 3.0 * sqrt(radius2) * forward[k];
@@ -116,8 +110,7 @@ int main(int argc, char **argv) {
     double half_width = 0.0; /* of the image plane at distance 1 from the eye */
     for (int corner = 0; corner < 8; ++corner) {
         double to_corner[3];
-        for (int k = 0; k < 3; ++k)
-            to_corner[k] = ((corner >> k) & 1 ? upper[k] : lower[k]) - eye[k];
+        for (int k = 0; k < 3; ++k) to_corner[k] = ((corner >> k) & 1 ? upper[k] : lower[k]) - eye[k];
         double depth = dot(to_corner, forward);
         half_width = fmax(half_width, fabs(dot(to_corner, right)) / depth);
         half_width = fmax(half_width, fabs(dot(to_corner, up)) / depth / aspect);
@@ -138,9 +131,7 @@ int main(int argc, char **argv) {
     }
 
     /* 5. Closest hits of all rays in one call (large batches run on the worker threads). */
-    if (failed(ppm_scene_intersect(scene, rays, (size_t)WIDTH * HEIGHT, hits),
-               "ppm_scene_intersect"))
-        goto cleanup;
+    if (failed(ppm_scene_intersect(scene, rays, (size_t)WIDTH * HEIGHT, hits), "ppm_scene_intersect")) goto cleanup;
 
     /* 6. Shadow rays towards a distant light. ppm_hit_spawn_ray moves the origin off the
      *    surface by the hit's error bound so the ray does not hit its own starting point. */
@@ -149,8 +140,7 @@ int main(int argc, char **argv) {
     size_t shadow_count = 0;
     for (size_t i = 0; i < (size_t)WIDTH * HEIGHT; ++i) {
         if (hits[i].geom_id == PPM_INVALID_ID) continue;
-        if (failed(ppm_hit_spawn_ray(&hits[i], to_light, &shadow_rays[shadow_count]),
-                   "ppm_hit_spawn_ray"))
+        if (failed(ppm_hit_spawn_ray(&hits[i], to_light, &shadow_rays[shadow_count]), "ppm_hit_spawn_ray"))
             goto cleanup;
         shadow_pixel[shadow_count++] = i;
     }
@@ -162,8 +152,7 @@ int main(int argc, char **argv) {
             goto cleanup;
         }
         ppm_status status = ppm_scene_occluded(scene, shadow_rays, shadow_count, occluded);
-        for (size_t s = 0; status == PPM_OK && s < shadow_count; ++s)
-            in_shadow[shadow_pixel[s]] = occluded[s];
+        for (size_t s = 0; status == PPM_OK && s < shadow_count; ++s) in_shadow[shadow_pixel[s]] = occluded[s];
         free(occluded);
         if (failed(status, "ppm_scene_occluded")) goto cleanup;
     }
@@ -202,12 +191,9 @@ int main(int argc, char **argv) {
         printf("no ray hit the scene\n");
     } else {
         const ppm_hit *hit = &hits[first_hit];
-        printf("first hit (row %zu, column %zu): t = %.17g\n", first_hit / WIDTH,
-               first_hit % WIDTH, hit->t);
-        printf("  patch %u of geometry %u at (u, v) = (%.17g, %.17g)\n", hit->prim_id,
-               hit->geom_id, hit->u, hit->v);
-        printf("  point (%.9f, %.9f, %.9f) +- %.3g\n", hit->p[0], hit->p[1], hit->p[2],
-               hit->p_error);
+        printf("first hit (row %zu, column %zu): t = %.17g\n", first_hit / WIDTH, first_hit % WIDTH, hit->t);
+        printf("  patch %u of geometry %u at (u, v) = (%.17g, %.17g)\n", hit->prim_id, hit->geom_id, hit->u, hit->v);
+        printf("  point (%.9f, %.9f, %.9f) +- %.3g\n", hit->p[0], hit->p[1], hit->p[2], hit->p_error);
         printf("  normal (%.9f, %.9f, %.9f)\n", hit->ng[0], hit->ng[1], hit->ng[2]);
     }
     exit_code = 0;

@@ -157,8 +157,7 @@ struct QueryResult {
     std::size_t found;
 };
 
-template <class Structure>
-QueryResult run_queries(const Structure &s, const std::vector<Vec3> &photons, int threads) {
+template <class Structure> QueryResult run_queries(const Structure &s, const std::vector<Vec3> &photons, int threads) {
     std::vector<std::size_t> found(threads, 0);
     const auto start = std::chrono::steady_clock::now();
     std::vector<std::thread> workers;
@@ -224,8 +223,8 @@ int main(int argc, char **argv) {
             mean_r += std::sqrt(h.r2);
         }
         mean_r /= static_cast<double>(points.size());
-        std::printf("%s: %zu hit points, radius mean %.3f max %.3f, %zu photons\n", sc.name, points.size(),
-                    mean_r, std::sqrt(max_r2), photons.size());
+        std::printf("%s: %zu hit points, radius mean %.3f max %.3f, %zu photons\n", sc.name, points.size(), mean_r,
+                    std::sqrt(max_r2), photons.size());
         std::printf(" photons in random order\n");
         measure<HitPointTree>("kd-tree", points, photons);
         measure<HitPointGrid>("hash grid", points, photons);

@@ -61,15 +61,9 @@ static void test_version_string_matches_header(void **state) {
 
 static void test_status_string_names_every_status(void **state) {
     (void)state;
-    const ppm_status all[] = {PPM_OK,
-                              PPM_ERROR_INVALID_ARGUMENT,
-                              PPM_ERROR_INVALID_OPERATION,
-                              PPM_ERROR_OUT_OF_MEMORY,
-                              PPM_ERROR_IO,
-                              PPM_ERROR_PARSE,
-                              PPM_ERROR_UNSUPPORTED,
-                              PPM_ERROR_CANCELLED,
-                              PPM_ERROR_INTERNAL};
+    const ppm_status all[] = {
+        PPM_OK,          PPM_ERROR_INVALID_ARGUMENT, PPM_ERROR_INVALID_OPERATION, PPM_ERROR_OUT_OF_MEMORY, PPM_ERROR_IO,
+        PPM_ERROR_PARSE, PPM_ERROR_UNSUPPORTED,      PPM_ERROR_CANCELLED,         PPM_ERROR_INTERNAL};
     const size_t n = sizeof all / sizeof all[0];
     for (size_t i = 0; i < n; ++i) {
         const char *name = ppm_status_string(all[i]);
@@ -431,8 +425,7 @@ static void test_add_patches_zero_count(void **state) {
     double points[48];
     flat_patch(points);
     uint32_t id = 99;
-    assert_ppm_error(ppm_scene_add_bezier_patches(f->scene, points, 0, &id), PPM_ERROR_INVALID_ARGUMENT,
-                     "patch_count");
+    assert_ppm_error(ppm_scene_add_bezier_patches(f->scene, points, 0, &id), PPM_ERROR_INVALID_ARGUMENT, "patch_count");
     assert_int_equal(id, 99);
 }
 

@@ -27,8 +27,7 @@ BezierPatch bilinear_patch(Vec3 a, Vec3 b, Vec3 c, Vec3 w) {
 BezierPatch wavy_patch() {
     BezierPatch p;
     for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j)
-            p.p[i * 4 + j] = {j + 0.1 * i * i, i - 0.2 * j, std::sin(1.0 + i * 1.7 + j * 0.9)};
+        for (int j = 0; j < 4; ++j) p.p[i * 4 + j] = {j + 0.1 * i * i, i - 0.2 * j, std::sin(1.0 + i * 1.7 + j * 0.9)};
     return p;
 }
 

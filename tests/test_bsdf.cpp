@@ -230,8 +230,8 @@ void samples_agree_with_eval_and_pdf(void **) {
         for (int k = 0; k < 20000; ++k) {
             Vec3 wo = random_upper(&rng);
             if (k % 2) wo.z = -wo.z; // both sides
-            const BsdfSample s = bsdf.sample(wo, test_rng_uniform(&rng), test_rng_uniform(&rng),
-                                             test_rng_uniform(&rng), TransportMode::Radiance);
+            const BsdfSample s = bsdf.sample(wo, test_rng_uniform(&rng), test_rng_uniform(&rng), test_rng_uniform(&rng),
+                                             TransportMode::Radiance);
             assert_true(s.valid());
             assert_true(s.wi.z * wo.z > 0); // reflection stays on wo's side
             assert_close(length(s.wi), 1.0, 1e-14);
@@ -282,11 +282,9 @@ void coated_albedo_is_fresnel_plus_transmitted_base(void **) {
     }
     // A white base conserves all energy, a black one keeps only the coat's reflection.
     const Vec3 wo = direction(60 * kDeg, 0);
-    assert_albedo(sampled_albedo(Bsdf::coated(Rgb(1.0), 1.5, 1.0), wo, TransportMode::Radiance, 5),
-                  Rgb(1.0));
+    assert_albedo(sampled_albedo(Bsdf::coated(Rgb(1.0), 1.5, 1.0), wo, TransportMode::Radiance, 5), Rgb(1.0));
     const double f = fresnel_dielectric(wo.z, 1.5);
-    assert_albedo(sampled_albedo(Bsdf::coated(Rgb(0.0), 1.5, 1.0), wo, TransportMode::Radiance, 6),
-                  Rgb(f));
+    assert_albedo(sampled_albedo(Bsdf::coated(Rgb(0.0), 1.5, 1.0), wo, TransportMode::Radiance, 6), Rgb(f));
 }
 
 // Glass: in importance (photon) mode every sample carries weight 1, so R + T = 1 and the
@@ -300,15 +298,14 @@ void glass_conserves_energy_in_importance_mode(void **) {
                 const double r = fresnel_dielectric(wo.z, eta);
                 assert_albedo(sampled_albedo(glass, wo, TransportMode::Importance, 7), Rgb(1.0));
                 const double eta_t = side > 0 ? eta : 1 / eta;
-                assert_albedo(sampled_albedo(glass, wo, TransportMode::Radiance, 8),
-                              Rgb(r + (1 - r) / (eta_t * eta_t)), false);
+                assert_albedo(sampled_albedo(glass, wo, TransportMode::Radiance, 8), Rgb(r + (1 - r) / (eta_t * eta_t)),
+                              false);
                 // Reflected fraction against R (binomial 3 sigma).
                 test_rng rng{9};
                 const int n = 100000;
                 int reflected = 0;
                 for (int k = 0; k < n; ++k) {
-                    const BsdfSample s = glass.sample(wo, test_rng_uniform(&rng), 0, 0,
-                                                      TransportMode::Importance);
+                    const BsdfSample s = glass.sample(wo, test_rng_uniform(&rng), 0, 0, TransportMode::Importance);
                     reflected += s.wi.z * wo.z > 0 ? 1 : 0;
                 }
                 assert_close(double(reflected) / n, r, 3 * std::sqrt(r * (1 - r) / n) + 1e-12);
@@ -336,7 +333,7 @@ void glass_refraction_follows_snell(void **) {
             const double sin_i = std::hypot(wo.x, wo.y), sin_t = std::hypot(rad.wi.x, rad.wi.y);
             assert_close(sin_i, eta_t * sin_t, 1e-14);
             assert_close(rad.wi.x * wo.y - rad.wi.y * wo.x, 0.0, 1e-15); // same plane
-            assert_true(rad.wi.x * wo.x + rad.wi.y * wo.y <= 0);          // continues across
+            assert_true(rad.wi.x * wo.x + rad.wi.y * wo.y <= 0);         // continues across
             assert_close(rad.pdf, 1 - r, 1e-15);
             assert_close(rad.weight.r * eta_t * eta_t, imp.weight.r, 1e-15);
             assert_close(imp.weight.r, 1.0, 0);

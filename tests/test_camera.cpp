@@ -19,9 +19,7 @@ void assert_vec_close(const Vec3 &a, const Vec3 &b, double tolerance) {
     assert_close(a.z, b.z, tolerance);
 }
 
-double angle_between(const Vec3 &a, const Vec3 &b) {
-    return std::atan2(length(cross(a, b)), dot(a, b));
-}
+double angle_between(const Vec3 &a, const Vec3 &b) { return std::atan2(length(cross(a, b)), dot(a, b)); }
 
 CameraSettings oblique_settings() {
     CameraSettings s;
@@ -56,13 +54,10 @@ void local_frame_follows_mitsuba(void **) {
     const double t = std::tan(30 * kDeg);
     // Left and right image edges at mid-height: half the fov to either side.
     assert_vec_close(camera.generate_ray(0, 50, 0.5, 0.5).direction, normalize({t, 0, 1}), 1e-15);
-    assert_vec_close(camera.generate_ray(200, 50, 0.5, 0.5).direction, normalize({-t, 0, 1}),
-                     1e-15);
+    assert_vec_close(camera.generate_ray(200, 50, 0.5, 0.5).direction, normalize({-t, 0, 1}), 1e-15);
     // Top edge (y = 0) is up; the vertical extent is the horizontal one over the aspect.
-    assert_vec_close(camera.generate_ray(100, 0, 0.5, 0.5).direction, normalize({0, t / 2, 1}),
-                     1e-15);
-    assert_vec_close(camera.generate_ray(0, 100, 0.5, 0.5).direction, normalize({t, -t / 2, 1}),
-                     1e-15);
+    assert_vec_close(camera.generate_ray(100, 0, 0.5, 0.5).direction, normalize({0, t / 2, 1}), 1e-15);
+    assert_vec_close(camera.generate_ray(0, 100, 0.5, 0.5).direction, normalize({t, -t / 2, 1}), 1e-15);
 }
 
 void fov_spans_the_image_width(void **) {
@@ -110,8 +105,7 @@ void project_inverts_generate_ray(void **) {
         const double x = -50 + 740 * test_rng_uniform(&rng), y = -50 + 580 * test_rng_uniform(&rng);
         const CameraRay ray = camera.generate_ray(x, y, 0.5, 0.5);
         double px, py;
-        assert_true(camera.project(ray.origin + ray.direction * (0.1 + 10 * test_rng_uniform(&rng)),
-                                   &px, &py));
+        assert_true(camera.project(ray.origin + ray.direction * (0.1 + 10 * test_rng_uniform(&rng)), &px, &py));
         assert_close(px, x, 1e-9);
         assert_close(py, y, 1e-9);
     }
@@ -215,12 +209,9 @@ void invalid_settings_are_rejected(void **) {
 
 int main() {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(centre_ray_goes_to_the_target),
-        cmocka_unit_test(local_frame_follows_mitsuba),
-        cmocka_unit_test(fov_spans_the_image_width),
-        cmocka_unit_test(pixels_are_square_for_any_aspect),
-        cmocka_unit_test(project_inverts_generate_ray),
-        cmocka_unit_test(thin_lens_rays_meet_on_the_focus_plane),
+        cmocka_unit_test(centre_ray_goes_to_the_target), cmocka_unit_test(local_frame_follows_mitsuba),
+        cmocka_unit_test(fov_spans_the_image_width),     cmocka_unit_test(pixels_are_square_for_any_aspect),
+        cmocka_unit_test(project_inverts_generate_ray),  cmocka_unit_test(thin_lens_rays_meet_on_the_focus_plane),
         cmocka_unit_test(invalid_settings_are_rejected),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);

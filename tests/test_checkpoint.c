@@ -129,7 +129,8 @@ static void expect_load_error(fixture *f, const char *path, ppm_status status, c
     ppm_renderer r = new_renderer(f, "sppm");
     const ppm_status got = ppm_renderer_load_checkpoint(r, path);
     if (got != status || !strstr(ppm_last_error_message(), fragment))
-        fail_msg("status %d (expected %d), message '%s' (expected '%s')", got, status, ppm_last_error_message(), fragment);
+        fail_msg("status %d (expected %d), message '%s' (expected '%s')", got, status, ppm_last_error_message(),
+                 fragment);
     int64_t passes = -1;
     assert_int_equal(ppm_renderer_get_int(r, "passes", &passes), PPM_OK);
     assert_int_equal(passes, 0); /* a refused checkpoint changes nothing */
@@ -330,7 +331,8 @@ static void test_flux_without_radius_is_refused(void **state) {
     memcpy(bytes + header_bytes + slots * 4 + 7 * 8 * sizeof(double), values, sizeof values);
     write_with_checksum(crafted, bytes, size - 8);
     free(bytes);
-    expect_load_error(f, crafted, PPM_ERROR_PARSE, "pixel slot 7: flux tau = 1e+30 (must be 0 where no radius was set)");
+    expect_load_error(f, crafted, PPM_ERROR_PARSE,
+                      "pixel slot 7: flux tau = 1e+30 (must be 0 where no radius was set)");
 }
 
 /* Counts beyond int64_t, which ppm_renderer_get_int would report as negative, with the

@@ -698,9 +698,7 @@ static void test_obj_polygon_keeps_its_triangles_with_area(void **state) {
 
 static void test_obj_vertex_colours_and_short_texcoords_load(void **state) {
     fixture *f = *state;
-    check_loads(f,
-                write_file(f, "colours.obj",
-                           "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nvt 0.5\nf 1/1 2/1 3/1\n"),
+    check_loads(f, write_file(f, "colours.obj", "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nvt 0.5\nf 1/1 2/1 3/1\n"),
                 1, 1);
 }
 

@@ -48,8 +48,7 @@ Found brute_force(const std::vector<HitPoint> &points, const Vec3 &photon) {
     return found;
 }
 
-template <class Structure>
-Found search(const Structure &s, const Vec3 &photon) {
+template <class Structure> Found search(const Structure &s, const Vec3 &photon) {
     Found found;
     s.query(photon, [&](std::uint32_t index, double dist2) { found.emplace_back(index, dist2); });
     std::sort(found.begin(), found.end());
@@ -71,8 +70,7 @@ void assert_same(const Found &expected, const Found &actual) {
 // Builds both structures over `points` and checks every photon against brute force.
 // Returns the number of (photon, hit point) pairs found, so callers can check the test
 // exercised something.
-std::size_t check_against_brute_force(const std::vector<HitPoint> &points,
-                                      const std::vector<Vec3> &photons) {
+std::size_t check_against_brute_force(const std::vector<HitPoint> &points, const std::vector<Vec3> &photons) {
     HitPointTree tree;
     HitPointGrid grid;
     tree.build(points.data(), points.size());
@@ -130,9 +128,9 @@ void points_on_surfaces_match_brute_force(void **) {
     for (int i = 0; i < 1500; ++i) {
         const double theta = 3 * test_rng_uniform(&rng), phi = 6.2 * test_rng_uniform(&rng);
         const double r = 0.02 + 0.1 * test_rng_uniform(&rng);
-        points.push_back(hit_point(Vec3{2 + std::sin(theta) * std::cos(phi), 1.5 + std::sin(theta) * std::sin(phi),
-                                        0.5 + std::cos(theta)},
-                                   r * r));
+        points.push_back(hit_point(
+            Vec3{2 + std::sin(theta) * std::cos(phi), 1.5 + std::sin(theta) * std::sin(phi), 0.5 + std::cos(theta)},
+            r * r));
     }
     std::vector<Vec3> photons;
     for (int i = 0; i < 1500; ++i)
@@ -177,8 +175,8 @@ void photons_exactly_at_the_radius_count(void **) {
     std::vector<bool> inside;
     for (int i = 0; i < 2000; ++i) {
         const Vec3 p = random_in_box(rng, {-1, -1, -1}, {1, 1, 1});
-        const Vec3 offset = Vec3{test_rng_uniform(&rng) - 0.5, test_rng_uniform(&rng) - 0.5,
-                                 test_rng_uniform(&rng) - 0.5} * 0.3;
+        const Vec3 offset =
+            Vec3{test_rng_uniform(&rng) - 0.5, test_rng_uniform(&rng) - 0.5, test_rng_uniform(&rng) - 0.5} * 0.3;
         const Vec3 q = p + offset;
         const double dist2 = distance2(q, p);
         inside.push_back(i % 2 == 0);
@@ -218,8 +216,8 @@ void photons_exactly_at_the_radius_far_from_the_origin(void **) {
     std::vector<bool> inside;
     for (int i = 0; i < 2000; ++i) {
         const Vec3 p = centre + random_in_box(rng, {-1, -1, -1}, {1, 1, 1});
-        const Vec3 offset = Vec3{test_rng_uniform(&rng) - 0.5, test_rng_uniform(&rng) - 0.5,
-                                 test_rng_uniform(&rng) - 0.5} * 1e-3;
+        const Vec3 offset =
+            Vec3{test_rng_uniform(&rng) - 0.5, test_rng_uniform(&rng) - 0.5, test_rng_uniform(&rng) - 0.5} * 1e-3;
         const Vec3 q = p + offset;
         const double dist2 = distance2(q, p);
         inside.push_back(i % 2 == 0);
@@ -261,9 +259,8 @@ void empty_structures_find_nothing(void **) {
 
 void one_point(void **) {
     const std::vector<HitPoint> points = {hit_point({1, 2, 3}, 0.25)};
-    const std::vector<Vec3> photons = {{1, 2, 3},       {1.5, 2, 3},   {1, 2.5, 3},    {1, 2, 2.5},
-                                       {1.3, 2.3, 3.1}, {1.51, 2, 3}, {1, 2, 3.5001}, {-40, 7, 3},
-                                       {1e300, 0, 0}};
+    const std::vector<Vec3> photons = {{1, 2, 3},    {1.5, 2, 3},    {1, 2.5, 3}, {1, 2, 2.5},  {1.3, 2.3, 3.1},
+                                       {1.51, 2, 3}, {1, 2, 3.5001}, {-40, 7, 3}, {1e300, 0, 0}};
     assert_int_equal(check_against_brute_force(points, photons), 5);
     // Zero radius: only a photon at the very position counts.
     const std::vector<HitPoint> point = {hit_point({1, 2, 3}, 0)};

@@ -77,15 +77,13 @@ Expected saddle_root(const Vec3 &o, const Vec3 &d) {
 }
 // z = x^2 + y^2:  (dx^2 + dy^2) t^2 + (2 ox dx + 2 oy dy - dz) t + ox^2 + oy^2 - oz = 0
 Expected bowl_root(const Vec3 &o, const Vec3 &d) {
-    return nearest_root(d.x * d.x + d.y * d.y, 2 * (o.x * d.x + o.y * d.y) - d.z,
-                        o.x * o.x + o.y * o.y - o.z, o, d);
+    return nearest_root(d.x * d.x + d.y * d.y, 2 * (o.x * d.x + o.y * d.y) - d.z, o.x * o.x + o.y * o.y - o.z, o, d);
 }
 Expected plane_root(const Vec3 &o, const Vec3 &d) { return nearest_root(0, d.z, o.z, o, d); }
 
 // Random rays from above and below towards random points over the unit square (some beyond
 // it, to produce misses); compares against the closed form.
-void check_random_rays(const BezierPatch &patch, Expected (*exact)(const Vec3 &, const Vec3 &),
-                       uint64_t seed) {
+void check_random_rays(const BezierPatch &patch, Expected (*exact)(const Vec3 &, const Vec3 &), uint64_t seed) {
     test_rng rng{seed};
     int hits = 0, misses = 0;
     for (int k = 0; k < 3000; ++k) {
@@ -198,8 +196,8 @@ void scene_reports_exact_hit_and_normal(void **) {
 // Embree's far limit is rounded up with next_float_up, which must agree with std::nextafter:
 // one float too low and a box at the hit could be culled.
 void next_float_up_matches_nextafter(void **) {
-    const float specials[] = {0.0f, -0.0f, FLT_MIN, -FLT_MIN, FLT_TRUE_MIN, -FLT_TRUE_MIN, FLT_MAX, -FLT_MAX,
-                              1.0f, -1.0f, INFINITY, -INFINITY, 3.5e-20f, -7.25e12f};
+    const float specials[] = {0.0f,     -0.0f, FLT_MIN, -FLT_MIN, FLT_TRUE_MIN, -FLT_TRUE_MIN, FLT_MAX,
+                              -FLT_MAX, 1.0f,  -1.0f,   INFINITY, -INFINITY,    3.5e-20f,      -7.25e12f};
     for (float f : specials) {
         const float expected = std::nextafter(f, INFINITY), actual = ppm::next_float_up(f);
         assert_memory_equal(&expected, &actual, sizeof(float));
@@ -207,7 +205,8 @@ void next_float_up_matches_nextafter(void **) {
     assert_true(std::isnan(ppm::next_float_up(NAN)));
     test_rng rng{41};
     for (int i = 0; i < 100000; ++i) {
-        const float f = static_cast<float>((test_rng_uniform(&rng) - 0.5) * std::ldexp(1.0, static_cast<int>(test_rng_uniform(&rng) * 200) - 100));
+        const float f = static_cast<float>((test_rng_uniform(&rng) - 0.5) *
+                                           std::ldexp(1.0, static_cast<int>(test_rng_uniform(&rng) * 200) - 100));
         assert_true(ppm::next_float_up(f) == std::nextafter(f, INFINITY));
     }
 }

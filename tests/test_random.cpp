@@ -69,7 +69,8 @@ void uniforms_have_the_right_mean_variance_and_histogram(void **) {
     // Five standard errors: sqrt(1/12 / n) for the mean, sqrt((1/80 - 1/144) / n) for the variance.
     assert_close(mean, 0.5, 5 * std::sqrt(1.0 / 12 / n));
     assert_close(variance, 1.0 / 12, 5 * std::sqrt((1.0 / 80 - 1.0 / 144) / n));
-    for (int d = 0; d < kDimensions; ++d) assert_close(dimension_sum[d] / kSamples, 0.5, 5 * std::sqrt(1.0 / 12 / kSamples));
+    for (int d = 0; d < kDimensions; ++d)
+        assert_close(dimension_sum[d] / kSamples, 0.5, 5 * std::sqrt(1.0 / 12 / kSamples));
     double chi2 = 0;
     const double expected = n / kBins;
     for (int h : histogram) chi2 += (h - expected) * (h - expected) / expected;
@@ -108,14 +109,14 @@ void neighbouring_numbers_are_uncorrelated(void **) {
     const struct {
         Draw a, b;
     } pairs[] = {
-        {{7, 1, 0, 0, 0}, {7, 1, 0, 0, 1}},  // dimensions in one Philox block
-        {{7, 1, 0, 0, 2}, {7, 1, 0, 0, 3}},  // its other half
-        {{7, 1, 0, 0, 3}, {7, 1, 0, 0, 4}},  // neighbouring blocks
-        {{7, 1, 0, 0, 5}, {7, 1, 0, 0, 12}}, // far dimensions
-        {{7, 1, 0, 0, 0}, {7, 1, 0, 1, 0}},  // neighbouring samples
-        {{7, 1, 0, 0, 0}, {7, 1, 1, 0, 0}},  // neighbouring passes
-        {{7, 0, 0, 0, 0}, {7, 1, 0, 0, 0}},  // camera and photon streams
-        {{7, 1, 0, 0, 0}, {8, 1, 0, 0, 0}},  // neighbouring seeds
+        {{7, 1, 0, 0, 0}, {7, 1, 0, 0, 1}},          // dimensions in one Philox block
+        {{7, 1, 0, 0, 2}, {7, 1, 0, 0, 3}},          // its other half
+        {{7, 1, 0, 0, 3}, {7, 1, 0, 0, 4}},          // neighbouring blocks
+        {{7, 1, 0, 0, 5}, {7, 1, 0, 0, 12}},         // far dimensions
+        {{7, 1, 0, 0, 0}, {7, 1, 0, 1, 0}},          // neighbouring samples
+        {{7, 1, 0, 0, 0}, {7, 1, 1, 0, 0}},          // neighbouring passes
+        {{7, 0, 0, 0, 0}, {7, 1, 0, 0, 0}},          // camera and photon streams
+        {{7, 1, 0, 0, 0}, {8, 1, 0, 0, 0}},          // neighbouring seeds
         {{7, 1, 0, 0, 0}, {7, 1, 0, 1ull << 32, 0}}, // high bits of the index
     };
     int checked = 0;
@@ -178,7 +179,8 @@ void numbers_are_independent_of_thread_count(void **) {
                 // Each thread walks its samples backwards, to vary the order too.
                 for (int i = kSamples - 1 - t; i >= 0; i -= threads) {
                     CounterRng rng(77, 1, 2, static_cast<std::uint64_t>(i));
-                    for (int d = 0; d < kDimensions; ++d) out[static_cast<std::size_t>(i) * kDimensions + d] = rng.uniform();
+                    for (int d = 0; d < kDimensions; ++d)
+                        out[static_cast<std::size_t>(i) * kDimensions + d] = rng.uniform();
                 }
             });
         for (std::thread &w : workers) w.join();

@@ -18,10 +18,10 @@ using namespace ppm;
 
 namespace {
 
-constexpr int kLayers = 40;             // quads z = 0 .. 39, each [-5, 5]^2
-constexpr double kLightZ = 45;           // the light [-2, 2]^2 facing down
-constexpr double kSecondLightZ = 43;     // a second light [0, 2] x [-2, 2] facing down
-constexpr double kBlockerZ = 42;         // a plain quad [-2, 0] x [0, 2]
+constexpr int kLayers = 40;          // quads z = 0 .. 39, each [-5, 5]^2
+constexpr double kLightZ = 45;       // the light [-2, 2]^2 facing down
+constexpr double kSecondLightZ = 43; // a second light [0, 2] x [-2, 2] facing down
+constexpr double kBlockerZ = 42;     // a plain quad [-2, 0] x [0, 2]
 
 struct StackScene {
     ppm_context context = nullptr;
@@ -78,8 +78,8 @@ void rays_leaving_quads_meet_the_next_layer(void **) {
             const double x = 8 * test_rng_uniform(&rng) - 4, y = 8 * test_rng_uniform(&rng) - 4;
             const ppm_hit start = hit_on_layer(scene, k, x, y);
             const double up = i % 2 == 0 ? 1.0 : -1.0;
-            const Vec3 dir = normalize(Vec3{test_rng_uniform(&rng) - 0.5, test_rng_uniform(&rng) - 0.5,
-                                            up * (0.05 + test_rng_uniform(&rng))});
+            const Vec3 dir = normalize(
+                Vec3{test_rng_uniform(&rng) - 0.5, test_rng_uniform(&rng) - 0.5, up * (0.05 + test_rng_uniform(&rng))});
             const ppm_ray ray = spawn_ray(start, dir);
             ppm_hit plain, hinted;
             scene.intersect(ray, plain);

@@ -102,8 +102,7 @@ void stream_matches_single_rays_on_every_kind(void **) {
     }
     const double positions[12] = {-4, 2, 5, -1, 2, 5, -1, 2, 8, -4, 2, 8};
     const uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
-    assert_int_equal(ppm_scene_add_triangle_mesh(s.scene, positions, 4, indices, 2, nullptr, nullptr, &id),
-                     PPM_OK);
+    assert_int_equal(ppm_scene_add_triangle_mesh(s.scene, positions, 4, indices, 2, nullptr, nullptr, &id), PPM_OK);
     assert_int_equal(ppm_scene_commit(s.scene), PPM_OK);
     const double eye[3] = {0, -12, 3.5};
     std::vector<int> hits;

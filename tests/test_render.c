@@ -25,8 +25,8 @@ typedef struct image {
     float *rgb;
 } image;
 
-static ppm_renderer make_renderer(ppm_scene scene, const double origin[3], const double target[3],
-                                  double fov, int width, int height) {
+static ppm_renderer make_renderer(ppm_scene scene, const double origin[3], const double target[3], double fov,
+                                  int width, int height) {
     ppm_camera camera;
     memset(&camera, 0, sizeof camera);
     memcpy(camera.origin, origin, sizeof camera.origin);
@@ -431,27 +431,26 @@ static void scene_errors(void **state) {
     uint32_t glass = 0, diffuse = 0;
     assert_ppm_ok(ppm_scene_add_dielectric_material(f->scene, 1.5, 1, &glass));
     assert_ppm_ok(ppm_scene_add_diffuse_material(f->scene, grey, &diffuse));
-    assert_ppm_error(ppm_scene_set_material_texture(f->scene, glass, "x.png", NULL, NULL),
-                     PPM_ERROR_INVALID_ARGUMENT, "glass");
-    assert_ppm_error(ppm_scene_set_material_texture(f->scene, diffuse, "no/such/texture.png", NULL, NULL),
-                     PPM_ERROR_IO, "no/such/texture.png");
-    assert_ppm_error(ppm_scene_set_material_texture(f->scene, 9, "x.png", NULL, NULL),
-                     PPM_ERROR_INVALID_ARGUMENT, "material id 9");
+    assert_ppm_error(ppm_scene_set_material_texture(f->scene, glass, "x.png", NULL, NULL), PPM_ERROR_INVALID_ARGUMENT,
+                     "glass");
+    assert_ppm_error(ppm_scene_set_material_texture(f->scene, diffuse, "no/such/texture.png", NULL, NULL), PPM_ERROR_IO,
+                     "no/such/texture.png");
+    assert_ppm_error(ppm_scene_set_material_texture(f->scene, 9, "x.png", NULL, NULL), PPM_ERROR_INVALID_ARGUMENT,
+                     "material id 9");
     const double position[3] = {0, 0, 0}, neg[3] = {-1, 0, 0};
     assert_ppm_error(ppm_scene_add_point_light(f->scene, position, neg, NULL), PPM_ERROR_INVALID_ARGUMENT, "intensity");
     assert_ppm_error(ppm_scene_add_spot_light(f->scene, position, position, grey, 20, 15, NULL),
                      PPM_ERROR_INVALID_ARGUMENT, "target");
     const double down[3] = {0, 0, -1};
-    assert_ppm_error(ppm_scene_add_spot_light(f->scene, position, down, grey, 20, 25, NULL),
-                     PPM_ERROR_INVALID_ARGUMENT, "beam_width");
+    assert_ppm_error(ppm_scene_add_spot_light(f->scene, position, down, grey, 20, 25, NULL), PPM_ERROR_INVALID_ARGUMENT,
+                     "beam_width");
     uint32_t patches = 0;
     assert_ppm_ok(ppm_scene_load_bpt(f->scene, PPM_TEAPOT, &patches));
     double rects[32 * 4];
     for (int i = 0; i < 32 * 4; ++i) rects[i] = (i % 4) / 4.0;
     assert_ppm_ok(ppm_scene_set_patch_uv_rects(f->scene, patches, rects));
     rects[17] = NAN;
-    assert_ppm_error(ppm_scene_set_patch_uv_rects(f->scene, patches, rects), PPM_ERROR_INVALID_ARGUMENT,
-                     "patch 4");
+    assert_ppm_error(ppm_scene_set_patch_uv_rects(f->scene, patches, rects), PPM_ERROR_INVALID_ARGUMENT, "patch 4");
     assert_ppm_error(ppm_scene_set_patch_uv_rects(f->scene, patches, NULL), PPM_ERROR_INVALID_ARGUMENT, "rects");
     const double q_origin[3] = {0, 0, 0}, q_u[3] = {1, 0, 0}, q_v[3] = {0, 1, 0};
     uint32_t quad = 0;
@@ -481,9 +480,11 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(furnace_sppm, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(furnace_sppm_photons_only, scene_fixture_setup, scene_fixture_teardown),
-        cmocka_unit_test_setup_teardown(furnace_with_glass_mirror_and_coat, scene_fixture_setup, scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(furnace_with_glass_mirror_and_coat, scene_fixture_setup,
+                                        scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(furnace_with_objects_ppm_mode, scene_fixture_setup, scene_fixture_teardown),
-        cmocka_unit_test_setup_teardown(point_light_on_plane_by_shadow_rays, scene_fixture_setup, scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(point_light_on_plane_by_shadow_rays, scene_fixture_setup,
+                                        scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(point_light_on_plane_by_photons_converges, scene_fixture_setup,
                                         scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(spot_light_beam_and_cutoff, scene_fixture_setup, scene_fixture_teardown),

@@ -56,10 +56,10 @@ static void expect_error(fixture *f, const char *text, ppm_status status, const 
         if (!strstr(message, *fragments)) fail_msg("message '%s' lacks '%s'", message, *fragments);
 }
 
-#define EXPECT_ERROR(f, text, status, ...)                            \
-    do {                                                              \
-        const char *const fragments_[] = {__VA_ARGS__, NULL};         \
-        expect_error((f), (text), (status), fragments_);              \
+#define EXPECT_ERROR(f, text, status, ...)                                                                             \
+    do {                                                                                                               \
+        const char *const fragments_[] = {__VA_ARGS__, NULL};                                                          \
+        expect_error((f), (text), (status), fragments_);                                                               \
     } while (0)
 
 static void test_small_box_builds_what_it_says(void **state) {
@@ -143,11 +143,10 @@ static void test_small_box_builds_what_it_says(void **state) {
 static void test_defaults_and_inline_patches(void **state) {
     fixture *f = *state;
     /* A flat patch given inline, no sensor, no bsdfs: Mitsuba's camera defaults. */
-    write_text(f->path,
-               "{\"shapes\": [{\"type\": \"bezier\", \"patches\": [[\n"
-               "  [0,0,5],[1,0,5],[2,0,5],[3,0,5], [0,1,5],[1,1,5],[2,1,5],[3,1,5],\n"
-               "  [0,2,5],[1,2,5],[2,2,5],[3,2,5], [0,3,5],[1,3,5],[2,3,5],[3,3,5]]],\n"
-               "  \"to_world\": {\"translate\": [-1.5, -1.5, 0]}}]}\n");
+    write_text(f->path, "{\"shapes\": [{\"type\": \"bezier\", \"patches\": [[\n"
+                        "  [0,0,5],[1,0,5],[2,0,5],[3,0,5], [0,1,5],[1,1,5],[2,1,5],[3,1,5],\n"
+                        "  [0,2,5],[1,2,5],[2,2,5],[3,2,5], [0,3,5],[1,3,5],[2,3,5],[3,3,5]]],\n"
+                        "  \"to_world\": {\"translate\": [-1.5, -1.5, 0]}}]}\n");
     ppm_scene_file file = NULL;
     assert_int_equal(ppm_scene_file_load(f->context, f->path, &file), PPM_OK);
     ppm_camera camera;
@@ -227,8 +226,9 @@ static void test_errors_are_located(void **state) {
                  "integrator.alpha: alpha must be in (0, 1]");
     EXPECT_ERROR(f, "{\"integrator\": {\"type\": \"bdpt\"}, \"shapes\": [{\"type\": \"sphere\"}]}", PPM_ERROR_PARSE,
                  "integrator.type: 'bdpt' is not known");
-    EXPECT_ERROR(f, "{\"sensor\": {\"film\": {\"width\": 100000, \"height\": 100000}}, \"shapes\": [{\"type\": \"sphere\"}]}",
-                 PPM_ERROR_PARSE, "sensor.film: width x height = 10000000000 pixels exceeds the limit");
+    EXPECT_ERROR(
+        f, "{\"sensor\": {\"film\": {\"width\": 100000, \"height\": 100000}}, \"shapes\": [{\"type\": \"sphere\"}]}",
+        PPM_ERROR_PARSE, "sensor.film: width x height = 10000000000 pixels exceeds the limit");
     EXPECT_ERROR(f, "{\"sensor\": {\"film\": {\"width\": 0}}, \"shapes\": [{\"type\": \"sphere\"}]}", PPM_ERROR_PARSE,
                  "sensor.film.width: expected a whole number in [1, ");
     EXPECT_ERROR(f, "{\"sensor\": {\"type\": \"thinlens\"}, \"shapes\": [{\"type\": \"sphere\"}]}", PPM_ERROR_PARSE,
@@ -250,8 +250,7 @@ static void test_errors_are_located(void **state) {
                  PPM_ERROR_PARSE, "shapes[0].to_world: a transform operation has exactly one key");
     EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"rectangle\", \"to_world\": [{\"shear\": 1}]}]}", PPM_ERROR_PARSE,
                  "shapes[0].to_world[0].shear: unknown key");
-    EXPECT_ERROR(f,
-                 "{\"shapes\": [{\"type\": \"sphere\", \"to_world\": {\"scale\": [1, 2, 1]}}]}",
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"sphere\", \"to_world\": {\"scale\": [1, 2, 1]}}]}",
                  PPM_ERROR_INVALID_ARGUMENT, "shapes[0].to_world: ");
     /* Degenerate geometry reported by the API, located in the file. */
     EXPECT_ERROR(f,
@@ -304,33 +303,39 @@ static void test_unreadable_bytes_and_deep_nesting(void **state) {
 /* Numbers that would overflow while rendering are refused where the file gives them. */
 static void test_overflowing_magnitudes_are_refused_where_they_stand(void **state) {
     fixture *f = *state;
-    EXPECT_ERROR(f, "{\"emitters\": [{\"type\": \"point\", \"intensity\": 1e308}], \"shapes\": [{\"type\": \"sphere\"}]}",
+    EXPECT_ERROR(f,
+                 "{\"emitters\": [{\"type\": \"point\", \"intensity\": 1e308}], \"shapes\": [{\"type\": \"sphere\"}]}",
                  PPM_ERROR_INVALID_ARGUMENT, "scene.json:1:15: emitters[0]: intensity 1e+308 exceeds the limit 1e+20");
     EXPECT_ERROR(f,
                  "{\"shapes\": [{\"type\": \"rectangle\", \"emitter\": {\"type\": \"area\", \"radiance\": [1e300, 1, "
                  "1]}}]}",
                  PPM_ERROR_INVALID_ARGUMENT, "shapes[0].emitter: radiance 1e+300 exceeds the limit 1e+20");
-    EXPECT_ERROR(f, "{\"integrator\": {\"initial_radius\": 1e300}, \"shapes\": [{\"type\": \"sphere\"}]}",
-                 PPM_ERROR_PARSE, "integrator.initial_radius: initial_radius must lie in [0, 1000000000000] (0 = automatic), not 1e+300");
+    EXPECT_ERROR(
+        f, "{\"integrator\": {\"initial_radius\": 1e300}, \"shapes\": [{\"type\": \"sphere\"}]}", PPM_ERROR_PARSE,
+        "integrator.initial_radius: initial_radius must lie in [0, 1000000000000] (0 = automatic), not 1e+300");
     EXPECT_ERROR(f,
                  "{\"sensor\": {\"to_world\": [{\"translate\": [1e308, 0, 0]}, {\"translate\": [1e308, 0, 0]}]}, "
                  "\"shapes\": [{\"type\": \"sphere\"}]}",
                  PPM_ERROR_PARSE, "sensor.to_world: the transform moves the origin to inf");
     EXPECT_ERROR(f, "{\"sensor\": {\"to_world\": {\"translate\": [0, 2e12, 0]}}, \"shapes\": [{\"type\": \"sphere\"}]}",
-                 PPM_ERROR_PARSE, "sensor.to_world: the transform moves the origin to 2000000000000, beyond +-1000000000000");
+                 PPM_ERROR_PARSE,
+                 "sensor.to_world: the transform moves the origin to 2000000000000, beyond +-1000000000000");
     EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"sphere\", \"radius\": 1e308}]}", PPM_ERROR_INVALID_ARGUMENT,
                  "shapes[0]: sphere radius must lie in (0, 1000000000000], not 1e+308");
     EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"sphere\", \"center\": [0, 0, 1e15]}]}", PPM_ERROR_INVALID_ARGUMENT,
                  "shapes[0]: center has a coordinate beyond +-1000000000000");
     EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"sphere\", \"radius\": 1e12, \"center\": [1e12, 0, 0]}]}",
-                 PPM_ERROR_INVALID_ARGUMENT, "shapes[0]: the bounding box of the sphere reaches the coordinate 2000000000000");
+                 PPM_ERROR_INVALID_ARGUMENT,
+                 "shapes[0]: the bounding box of the sphere reaches the coordinate 2000000000000");
     EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"rectangle\", \"to_world\": {\"scale\": 1e13}}]}",
                  PPM_ERROR_INVALID_ARGUMENT, "scene.json:1:13: shapes[0]: origin has a coordinate beyond");
     EXPECT_ERROR(f,
                  "{\"shapes\": [{\"type\": \"bezier\", \"to_world\": {\"scale\": 1e12}, \"patches\": [[[0,0,0],[1,0,0],"
                  "[2,0,0],[3,0,0],[0,1,0],[1,1,0],[2,1,0],[3,1,0],[0,2,0],[1,2,0],[2,2,0],[3,2,0],[0,3,0],[1,3,0],"
                  "[2,3,0],[3,3,0]]]}]}",
-                 PPM_ERROR_INVALID_ARGUMENT, "shapes[0].to_world: geometry 0 (Bezier patches): the bounding box of the Bezier patches reaches the coordinate 3000000000000");
+                 PPM_ERROR_INVALID_ARGUMENT,
+                 "shapes[0].to_world: geometry 0 (Bezier patches): the bounding box of the Bezier patches reaches the "
+                 "coordinate 3000000000000");
     char bpt[320];
     snprintf(bpt, sizeof bpt, "%s/far.bpt", f->folder);
     write_text(bpt, "1\n3 3\n0 0 0\n1 0 0\n2 0 0\n3 0 0\n0 1 0\n1 1 0\n2 1 0\n3 1 0\n0 2 0\n1 2 0\n2 2 0\n3 2 0\n"

@@ -98,8 +98,7 @@ static void test_scene_set_int_range(void **state) {
                          "patch_presplit");
     assert_ppm_ok(ppm_scene_set_int(f->scene, "patch_presplit", 1));
     assert_ppm_ok(ppm_scene_set_int(f->scene, "patch_presplit", 32));
-    assert_ppm_error(ppm_scene_set_double(f->scene, "patch_presplit", 2.5), PPM_ERROR_INVALID_ARGUMENT,
-                     "whole number");
+    assert_ppm_error(ppm_scene_set_double(f->scene, "patch_presplit", 2.5), PPM_ERROR_INVALID_ARGUMENT, "whole number");
     /* An integer for the double key is taken as a double: 1 is beyond its range. */
     assert_ppm_error(ppm_scene_set_int(f->scene, "tolerance", 1), PPM_ERROR_INVALID_ARGUMENT, "tolerance");
     assert_ppm_error(ppm_scene_set_int(f->scene, "tolerance", 0), PPM_ERROR_INVALID_ARGUMENT, "tolerance");
@@ -160,8 +159,7 @@ static void test_renderer_read_only_values(void **state) {
     assert_true(d == 0.0);
     assert_ppm_error(ppm_renderer_set_int(r, "passes", 3), PPM_ERROR_INVALID_ARGUMENT, "'passes' is read-only");
     assert_ppm_error(ppm_renderer_set_double(r, "width", 9), PPM_ERROR_INVALID_ARGUMENT, "'width' is read-only");
-    assert_ppm_error(ppm_renderer_set_string(r, "last_eye_pass_seconds", "1"), PPM_ERROR_INVALID_ARGUMENT,
-                     "read-only");
+    assert_ppm_error(ppm_renderer_set_string(r, "last_eye_pass_seconds", "1"), PPM_ERROR_INVALID_ARGUMENT, "read-only");
     assert_ppm_error(ppm_renderer_get_int(r, "last_photon_pass_seconds", &n), PPM_ERROR_INVALID_ARGUMENT,
                      "'last_photon_pass_seconds' is a double");
     assert_int_equal(n, -1);

@@ -30,8 +30,7 @@ static ppm_hit trace(ppm_scene scene, ppm_ray ray) {
 }
 
 static void assert_miss(ppm_hit hit) {
-    if (hit.geom_id != PPM_INVALID_ID)
-        fail_msg("expected a miss, got geometry %u at t = %.17g", hit.geom_id, hit.t);
+    if (hit.geom_id != PPM_INVALID_ID) fail_msg("expected a miss, got geometry %u at t = %.17g", hit.geom_id, hit.t);
     assert_true(isinf(hit.t));
 }
 
@@ -93,8 +92,8 @@ static void test_sphere_ray_through_center(void **state) {
     commit(f->scene);
     /* from c + 100 * (3, 4, 12) / 13 towards the centre: t = 100 - r */
     const double n[3] = {3 / 13.0, 4 / 13.0, 12 / 13.0};
-    const ppm_hit hit = trace(f->scene, make_ray(c[0] + 100 * n[0], c[1] + 100 * n[1], c[2] + 100 * n[2], -n[0],
-                                                 -n[1], -n[2]));
+    const ppm_hit hit =
+        trace(f->scene, make_ray(c[0] + 100 * n[0], c[1] + 100 * n[1], c[2] + 100 * n[2], -n[0], -n[1], -n[2]));
     assert_int_equal(hit.geom_id, 0);
     assert_close(hit.t, 97.0, 97.0 * 1e-12);
     assert_vector_close(hit.p, c[0] + r * n[0], c[1] + r * n[1], c[2] + r * n[2], 1e-9);
@@ -264,7 +263,8 @@ static void test_quad_uv_and_normal_of_tilted_parallelogram(void **state) {
     const double n[3] = {2 / 3.0, -2 / 3.0, 1 / 3.0};
     double p[3];
     for (int k = 0; k < 3; ++k) p[k] = o[k] + 0.3 * eu[k] + 0.6 * ev[k];
-    const ppm_hit hit = trace(f->scene, make_ray(p[0] + 4 * n[0], p[1] + 4 * n[1], p[2] + 4 * n[2], -n[0], -n[1], -n[2]));
+    const ppm_hit hit =
+        trace(f->scene, make_ray(p[0] + 4 * n[0], p[1] + 4 * n[1], p[2] + 4 * n[2], -n[0], -n[1], -n[2]));
     assert_int_equal(hit.geom_id, 0);
     assert_close(hit.t, 4.0, 1e-12);
     assert_close(hit.u, 0.3, 1e-12);
@@ -587,8 +587,8 @@ static void test_batch_matches_single_calls(void **state) {
         assert_ppm_ok(ppm_scene_intersect(f->scene, &rays[i], 1, &single));
         assert_ppm_ok(ppm_scene_occluded(f->scene, &rays[i], 1, &single_occluded));
         if (memcmp(&single, &hits[i], sizeof single) != 0)
-            fail_msg("ray %zu: batch hit (geom %u, t %.17g) differs from single (geom %u, t %.17g)", i,
-                     hits[i].geom_id, hits[i].t, single.geom_id, single.t);
+            fail_msg("ray %zu: batch hit (geom %u, t %.17g) differs from single (geom %u, t %.17g)", i, hits[i].geom_id,
+                     hits[i].t, single.geom_id, single.t);
         assert_int_equal(single_occluded, occluded[i]);
     }
 }
@@ -698,8 +698,8 @@ static void test_transformed_mesh_normals_under_shear(void **state) {
     double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
     const double length = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     for (int k = 0; k < 3; ++k) n[k] /= length;
-    const ppm_hit hit = trace(f->scene, make_ray(centroid[0] + n[0], centroid[1] + n[1], centroid[2] + n[2], -n[0],
-                                                 -n[1], -n[2]));
+    const ppm_hit hit =
+        trace(f->scene, make_ray(centroid[0] + n[0], centroid[1] + n[1], centroid[2] + n[2], -n[0], -n[1], -n[2]));
     assert_int_equal(hit.geom_id, 0);
     assert_close(hit.t, 1.0, 1e-12);
     assert_close(hit.u, 1.0 / 3, 1e-12);
@@ -808,7 +808,6 @@ static void test_spawn_from_inside_sphere_hit(void **state) {
     assert_miss(trace(f->scene, spawn(&hit, 0, 1, 0)));
 }
 
-
 /* Nearest root t > 0 of a unit-direction ray and a sphere, in the cancellation-free form. */
 static double sphere_root(const double o[3], const double d[3], const double c[3], double r) {
     double f[3], l[3];
@@ -820,7 +819,11 @@ static double sphere_root(const double o[3], const double d[3], const double c[3
     const double q = -(b + copysign(sqrt(disc), b));
     const double cc = f[0] * f[0] + f[1] * f[1] + f[2] * f[2] - r * r;
     double t0 = q, t1 = q != 0 ? cc / q : q;
-    if (t0 > t1) { const double s = t0; t0 = t1; t1 = s; }
+    if (t0 > t1) {
+        const double s = t0;
+        t0 = t1;
+        t1 = s;
+    }
     return t0 > 0 ? t0 : (t1 > 0 ? t1 : INFINITY);
 }
 
@@ -831,7 +834,7 @@ static void test_huge_wall_spheres_and_small_ones(void **state) {
     fixture *f = *state;
     const double spheres[9][4] = {
         {1e5 + 1, 40.8, 81.6, 1e5},  {-1e5 + 99, 40.8, 81.6, 1e5}, {50, 40.8, 1e5, 1e5},
-        {50, 40.8, -1e5 + 170, 1e5}, {50, 1e5, 81.6, 1e5},        {50, -1e5 + 81.6, 81.6, 1e5},
+        {50, 40.8, -1e5 + 170, 1e5}, {50, 1e5, 81.6, 1e5},         {50, -1e5 + 81.6, 81.6, 1e5},
         {27, 16.5, 47, 16.5},        {73, 16.5, 88, 16.5},         {50, 8.5, 60, 8.5}};
     for (int s = 0; s < 9; ++s) add_sphere(f->scene, spheres[s][0], spheres[s][1], spheres[s][2], spheres[s][3]);
     commit(f->scene);
@@ -846,7 +849,10 @@ static void test_huge_wall_spheres_and_small_ones(void **state) {
         int nearest = -1;
         for (int s = 0; s < 9; ++s) {
             const double t = sphere_root(o, d, spheres[s], spheres[s][3]);
-            if (t < best) { best = t; nearest = s; }
+            if (t < best) {
+                best = t;
+                nearest = s;
+            }
         }
         const ppm_hit hit = trace(f->scene, make_ray(o[0], o[1], o[2], d[0], d[1], d[2]));
         assert_int_equal(nearest >= 0, 1); /* the room is closed */
@@ -872,7 +878,11 @@ static void sphere_roots(const double o[3], const double d[3], const double c[3]
     const double cc = f[0] * f[0] + f[1] * f[1] + f[2] * f[2] - r * r;
     t[0] = q;
     t[1] = q != 0 ? cc / q : q;
-    if (t[0] > t[1]) { const double s = t[0]; t[0] = t[1]; t[1] = s; }
+    if (t[0] > t[1]) {
+        const double s = t[0];
+        t[0] = t[1];
+        t[1] = s;
+    }
 }
 
 /* Overlapping spheres of many sizes, rays from anywhere (inside spheres too) with directions of
@@ -906,7 +916,10 @@ static void check_random_spheres_and_ray_intervals(fixture *f, int count, uint64
             double t[2];
             sphere_roots(o, d, spheres[s], spheres[s][3], t);
             for (int k = 0; k < 2; ++k)
-                if (t[k] >= tnear && t[k] <= tfar && t[k] < best) { best = t[k]; nearest = s; }
+                if (t[k] >= tnear && t[k] <= tfar && t[k] < best) {
+                    best = t[k];
+                    nearest = s;
+                }
         }
         ppm_ray ray = make_ray(o[0], o[1], o[2], d[0] * scale, d[1] * scale, d[2] * scale);
         ray.tnear = tnear / scale;

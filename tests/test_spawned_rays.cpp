@@ -65,8 +65,10 @@ void chord_slope_bound_holds_on_teapot_sub_patches(void **) {
                 ++proven;
                 slopes.push_back(slope);
                 for (int k = 0; k < 40; ++k) {
-                    const double ua = u0 + (u1 - u0) * test_rng_uniform(&rng), va = v0 + (v1 - v0) * test_rng_uniform(&rng);
-                    const double ub = u0 + (u1 - u0) * test_rng_uniform(&rng), vb = v0 + (v1 - v0) * test_rng_uniform(&rng);
+                    const double ua = u0 + (u1 - u0) * test_rng_uniform(&rng),
+                                 va = v0 + (v1 - v0) * test_rng_uniform(&rng);
+                    const double ub = u0 + (u1 - u0) * test_rng_uniform(&rng),
+                                 vb = v0 + (v1 - v0) * test_rng_uniform(&rng);
                     if (std::max(std::fabs(ua - ub), std::fabs(va - vb)) < 1e-3 * (u1 - u0)) continue;
                     const Vec3 chord = evaluate(patch, ub, vb) - evaluate(patch, ua, va);
                     const double rise = std::fabs(dot(n, chord)), run = length(cross(chord, n));
@@ -104,10 +106,10 @@ void leaves_for_good_cases(void **) {
     const Vec3 n{0, 0, 1};
     const Vec3 offset{0, 0, 1e-8};
     assert_true(leaves_for_good(n, 0.5, offset, 1e-14, Vec3{0.3, 0.2, 1}));
-    assert_true(leaves_for_good(n, 0.5, offset, 1e-14, Vec3{0, 1, 0.55}));  // rises 0.55 per 1: steeper
-    assert_false(leaves_for_good(n, 0.5, offset, 1e-14, Vec3{0, 1, 0.45})); // shallower than the bound
-    assert_false(leaves_for_good(n, 0.5, offset, 1e-14, Vec3{0, 0, -1}));   // back through the surface
-    assert_false(leaves_for_good(n, 0.5, offset, 2e-8, Vec3{0, 0, 1}));     // offset within its error
+    assert_true(leaves_for_good(n, 0.5, offset, 1e-14, Vec3{0, 1, 0.55}));        // rises 0.55 per 1: steeper
+    assert_false(leaves_for_good(n, 0.5, offset, 1e-14, Vec3{0, 1, 0.45}));       // shallower than the bound
+    assert_false(leaves_for_good(n, 0.5, offset, 1e-14, Vec3{0, 0, -1}));         // back through the surface
+    assert_false(leaves_for_good(n, 0.5, offset, 2e-8, Vec3{0, 0, 1}));           // offset within its error
     assert_false(leaves_for_good(n, 0.5, Vec3{1e-8, 0, 1e-9}, 0, Vec3{0, 0, 1})); // offset along the plane
     assert_false(leaves_for_good(n, INFINITY, offset, 0, Vec3{0, 0, 1}));
     // Mirrored: both below the plane.
@@ -187,7 +189,8 @@ void hint_changes_no_answer_on_the_teapot(void **) {
         }
     }
     std::printf("%d spawned rays (%d hit the teapot again): the start sub-patch was settled "
-                "without a search for %d\n", spawned, hits, settled);
+                "without a search for %d\n",
+                spawned, hits, settled);
     assert_true(spawned > 10000);
     assert_true(hits > spawned / 10);
     assert_true(settled > spawned / 2);

@@ -242,8 +242,9 @@ std::vector<Contribution> random_contributions(std::size_t count, std::size_t pi
 
 // Adds contributions[order[i]] for i in [0, count) on `threads` threads, thread t taking
 // every threads-th one (or contiguous chunks), and takes the pass.
-std::vector<PassPhotons> accumulate(const std::vector<Contribution> &contributions, const std::vector<std::size_t> &order,
-                                    std::size_t pixels, int threads, bool chunked) {
+std::vector<PassPhotons> accumulate(const std::vector<Contribution> &contributions,
+                                    const std::vector<std::size_t> &order, std::size_t pixels, int threads,
+                                    bool chunked) {
     FluxAccumulator acc(pixels, 1000.0);
     std::vector<std::thread> workers;
     const std::size_t n = order.size();
@@ -308,7 +309,7 @@ void flux_sums_are_bit_identical_in_any_order_and_thread_count(void **) {
 
 // The 64-bit low word wraps around several times; the count of wraps keeps the sum exact.
 void flux_sums_beyond_64_bits_stay_exact(void **) {
-    FluxAccumulator acc(2, 1.0); // q = 2^-40
+    FluxAccumulator acc(2, 1.0);            // q = 2^-40
     const double big = std::ldexp(1.0, 21); // 2^61 quanta each
     std::vector<std::thread> workers;
     for (int t = 0; t < 4; ++t)
@@ -353,8 +354,8 @@ void out_of_range_flux_is_rejected_and_counted(void **) {
 }
 
 void flux_scale_must_be_positive_and_finite(void **) {
-    for (const double scale : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(),
-                               std::numeric_limits<double>::infinity(), 1e-320}) {
+    for (const double scale :
+         {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), 1e-320}) {
         bool thrown = false;
         try {
             FluxAccumulator acc(4, scale);

@@ -47,9 +47,9 @@
 
 namespace {
 
-using ref::real;
 using ref::cross;
 using ref::normalize;
+using ref::real;
 using ref::RootKind;
 
 // ---------------------------------------------------------------------------------------
@@ -62,7 +62,7 @@ struct Fixture {
     double diagonal = 0;  // of the scene's bounding box
     double tolerance = 0; // absolute: scene tolerance * diagonal
     bool quick = false;
-    int presplit = 0;     // scene setting "patch_presplit"; 0: libppm's default
+    int presplit = 0; // scene setting "patch_presplit"; 0: libppm's default
 };
 Fixture g;
 
@@ -126,9 +126,7 @@ bool library_occluded(const ppm_ray &r) {
 }
 
 // Roots a hit may match: real roots and tangent touches within 1.5 tolerances.
-bool is_candidate(const ref::Root &r) {
-    return r.kind != RootKind::tangent || r.distance <= 1.5L * g.tolerance;
-}
+bool is_candidate(const ref::Root &r) { return r.kind != RootKind::tangent || r.distance <= 1.5L * g.tolerance; }
 // Real roots libppm must find: those whose dip through the surface is deeper than 1e-15 of
 // the diagonal (~20 ulps of the teapot's coordinates, well above the rounding of a
 // double-precision evaluation of the surface), and roots at collapsed edges. Shallower ones
@@ -136,8 +134,7 @@ bool is_candidate(const ref::Root &r) {
 // the surface by ~1e-17: no double-precision method can tell which, so either answer is
 // right (the hit must still be a valid point).
 bool is_robust(const ref::Root &r) {
-    return r.kind != RootKind::tangent &&
-           (r.degenerate_normal || r.dip > 1e-15L * g.diagonal);
+    return r.kind != RootKind::tangent && (r.degenerate_normal || r.dip > 1e-15L * g.diagonal);
 }
 const ref::Root *first_real(const ref::Result &res) {
     for (const ref::Root &r : res.roots)
@@ -172,10 +169,10 @@ int distinct_real_roots(const ref::Result &res, double dlen) {
 
 struct Tally {
     const char *name;
-    size_t rays = 0, hits = 0, misses = 0, false_hits = 0, wrong_t = 0, undecided = 0,
-           ambiguous = 0, other = 0; // other: case-specific failed checks
-    double max_dt = 0;               // over matched real roots, relative to the diagonal
-    ppm_ray worst{};                 // the ray of max_dt
+    size_t rays = 0, hits = 0, misses = 0, false_hits = 0, wrong_t = 0, undecided = 0, ambiguous = 0,
+           other = 0;  // other: case-specific failed checks
+    double max_dt = 0; // over matched real roots, relative to the diagonal
+    ppm_ray worst{};   // the ray of max_dt
     int printed = 0;
     std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
 };
@@ -186,12 +183,12 @@ const char *kind_name(RootKind k) {
     return k == RootKind::proper ? "proper" : k == RootKind::singular ? "singular" : "tangent";
 }
 
-void print_ray(const char *what, const Tally &tally, const ppm_ray &r, const ppm_hit &h,
-               const ref::Result &res, const char *detail) {
+void print_ray(const char *what, const Tally &tally, const ppm_ray &r, const ppm_hit &h, const ref::Result &res,
+               const char *detail) {
     std::printf("  %s [%s]: %s\n    org = {%.17g, %.17g, %.17g} dir = {%.17g, %.17g, %.17g} "
                 "tnear = %.17g tfar = %.17g\n    libppm: t = %.17g prim %u u = %.17g v = %.17g\n",
-                what, tally.name, detail, r.org[0], r.org[1], r.org[2], r.dir[0], r.dir[1],
-                r.dir[2], r.tnear, r.tfar, h.t, h.prim_id, h.u, h.v);
+                what, tally.name, detail, r.org[0], r.org[1], r.org[2], r.dir[0], r.dir[1], r.dir[2], r.tnear, r.tfar,
+                h.t, h.prim_id, h.u, h.v);
     int shown = 0;
     for (const ref::Root &x : res.roots) {
         if (++shown > 6) break;
@@ -203,8 +200,8 @@ void print_ray(const char *what, const Tally &tally, const ppm_ray &r, const ppm
     if (res.roots.empty()) std::printf("    reference: no root\n");
 }
 
-void report(Tally &tally, size_t Tally::*counter, const char *what, const ppm_ray &r,
-            const ppm_hit &h, const ref::Result &res, const char *detail) {
+void report(Tally &tally, size_t Tally::*counter, const char *what, const ppm_ray &r, const ppm_hit &h,
+            const ref::Result &res, const char *detail) {
     ++(tally.*counter);
     if (tally.printed++ < 8) print_ray(what, tally, r, h, res, detail);
 }
@@ -237,8 +234,7 @@ bool hit_is_valid(const ppm_ray &r, const ppm_hit &h, std::string &why) {
     }
     off = std::sqrt(off);
     p_off = std::sqrt(p_off);
-    if (!(off <= 1.5L * g.tolerance) || !(p_off <= 1e-3L * g.tolerance) ||
-        !(h.p_error >= g.tolerance)) {
+    if (!(off <= 1.5L * g.tolerance) || !(p_off <= 1e-3L * g.tolerance) || !(h.p_error >= g.tolerance)) {
         std::snprintf(text, sizeof text,
                       "point S(u, v) is %.3Lg from o + t d (tolerance %.3g), p is %.3Lg from "
                       "S(u, v), p_error %.3g",
@@ -313,8 +309,7 @@ Verdict compare(Tally &tally, const ppm_ray &r, const ppm_hit &h, const ref::Res
                 tally.worst = r;
             }
             char text[160];
-            std::snprintf(text, sizeof text,
-                          "on the surface but %.3Lg before the nearest root (tolerance %.3g)",
+            std::snprintf(text, sizeof text, "on the surface but %.3Lg before the nearest root (tolerance %.3g)",
                           std::sqrt(far), g.tolerance);
             report(tally, &Tally::wrong_t, "WRONG T", r, h, res, text);
             return Verdict::wrong_t;
@@ -328,13 +323,10 @@ Verdict compare(Tally &tally, const ppm_ray &r, const ppm_hit &h, const ref::Res
     // nearest candidate of any kind.
     const ref::Root *match = nullptr, *robust = nullptr;
     for (const ref::Root &x : res.roots) {
-        if (is_candidate(x) && (!match || std::fabs(x.t - h.t) < std::fabs(match->t - h.t)))
-            match = &x;
-        if (is_robust(x) && (!robust || std::fabs(x.t - h.t) < std::fabs(robust->t - h.t)))
-            robust = &x;
+        if (is_candidate(x) && (!match || std::fabs(x.t - h.t) < std::fabs(match->t - h.t))) match = &x;
+        if (is_robust(x) && (!robust || std::fabs(x.t - h.t) < std::fabs(robust->t - h.t))) robust = &x;
     }
-    if (robust && static_cast<double>(std::fabs(robust->t - h.t)) * dlen <= g.tolerance)
-        match = robust;
+    if (robust && static_cast<double>(std::fabs(robust->t - h.t)) * dlen <= g.tolerance) match = robust;
     const double dt = static_cast<double>(std::fabs(match->t - h.t)) * dlen;
     if (!is_robust(*match)) {
         // A touch within the tolerance: where along it the hit lies is not defined more
@@ -359,13 +351,13 @@ Verdict compare(Tally &tally, const ppm_ray &r, const ppm_hit &h, const ref::Res
 void finish(Tally &t, const char *extra = "") {
     std::printf("%s: %zu rays, %zu hits, %zu misses, %zu false hits, %zu wrong t, "
                 "%zu undecided, %zu tangent-ambiguous, %zu other failures, max |dt|/diag %.3g%s\n",
-                t.name, t.rays, t.hits, t.misses, t.false_hits, t.wrong_t, t.undecided,
-                t.ambiguous, t.other, t.max_dt, extra);
+                t.name, t.rays, t.hits, t.misses, t.false_hits, t.wrong_t, t.undecided, t.ambiguous, t.other, t.max_dt,
+                extra);
     if (t.max_dt > 1e-12)
         std::printf("  (max |dt| on org = {%.17g, %.17g, %.17g} dir = {%.17g, %.17g, %.17g} "
                     "tnear = %.17g)\n",
-                    t.worst.org[0], t.worst.org[1], t.worst.org[2], t.worst.dir[0],
-                    t.worst.dir[1], t.worst.dir[2], t.worst.tnear);
+                    t.worst.org[0], t.worst.org[1], t.worst.org[2], t.worst.dir[0], t.worst.dir[1], t.worst.dir[2],
+                    t.worst.tnear);
     std::printf("  (%s: %.1f s)\n", t.name,
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t.start).count());
     std::fflush(stdout);
@@ -387,14 +379,12 @@ void finish(Tally &t, const char *extra = "") {
 }
 
 // A case-specific check that failed: counted, printed (with the reference roots).
-void check(Tally &t, bool ok, const char *what, const ppm_ray &r, const ppm_hit &h,
-           const ref::Result &res) {
+void check(Tally &t, bool ok, const char *what, const ppm_ray &r, const ppm_hit &h, const ref::Result &res) {
     if (!ok) report(t, &Tally::other, "CHECK FAILED", r, h, res, what);
 }
 
 // ---------------------------------------------------------------------------------------
 // Geometry helpers on the reference's patches (long double).
-
 
 // Unit normal of patch `p` at (u, v); false where it is degenerate.
 bool unit_normal(int p, real u, real v, real s[3], real n[3]) {
@@ -420,8 +410,7 @@ Verdict run(Tally &t, const ppm_ray &r, ppm_hit &h, ref::Result &res) {
 // point (a check of the reference: a root there, or at least a touch where rounding the ray
 // to double has left it tangent), and libppm must hit at or before it when the root there
 // is robust. Returns whether the reference has a root before the point.
-bool check_known_point(Tally &t, const ppm_ray &r, const ppm_hit &h, const ref::Result &res,
-                       real length) {
+bool check_known_point(Tally &t, const ppm_ray &r, const ppm_hit &h, const ref::Result &res, real length) {
     bool seen = false, robust = false;
     for (const ref::Root &x : res.roots)
         if (std::fabs(x.t - length) * dir_length(r) <= 10 * g.tolerance && is_candidate(x)) {
@@ -493,8 +482,8 @@ int setup(void **) {
         return -1;
     }
     g.reference = new ref::Intersector(std::move(patches));
-    std::printf("teapot: diagonal %.6f, tolerance %.3g (absolute %.3g), patch_presplit %g%s\n", g.diagonal,
-                tol, g.tolerance, presplit, g.quick ? ", quick mode" : "");
+    std::printf("teapot: diagonal %.6f, tolerance %.3g (absolute %.3g), patch_presplit %g%s\n", g.diagonal, tol,
+                g.tolerance, presplit, g.quick ? ", quick mode" : "");
     return 0;
 }
 
@@ -575,13 +564,11 @@ void random_rays_match_reference(void **) {
                 bool found = false;
                 for (const ref::Root &y : other.roots)
                     found = found ||
-                            (x.patch == y.patch &&
-                             (x.kind == RootKind::tangent) == (y.kind == RootKind::tangent) &&
+                            (x.patch == y.patch && (x.kind == RootKind::tangent) == (y.kind == RootKind::tangent) &&
                              std::fabs(x.t - y.t) * dir_length(r) <= 1e-12L * g.diagonal);
                 same = same && found;
             }
-            check(t, same, "reference with coarser leaves finds other roots (reference bug)", r,
-                  hits[i], res);
+            check(t, same, "reference with coarser leaves finds other roots (reference bug)", r, hits[i], res);
             ++self_checks;
         }
         if (res.decided && distinct_real_roots(res, dir_length(rays[i])) >= 2) ++multiple;
@@ -593,8 +580,7 @@ void random_rays_match_reference(void **) {
         }
     }
     char extra[100];
-    std::snprintf(extra, sizeof extra, ", %zu with >= 2 roots, %zu reference self-checks",
-                  multiple, self_checks);
+    std::snprintf(extra, sizeof extra, ", %zu with >= 2 roots, %zu reference self-checks", multiple, self_checks);
     finish(t, extra);
 }
 
@@ -611,8 +597,7 @@ void grazing(double theta, uint64_t seed, const char *name) {
         const real phi = 2 * M_PIl * uniform(rng), side = uniform(rng) < 0.5 ? -1 : 1;
         real dir[3];
         for (int c = 0; c < 3; ++c)
-            dir[c] = std::cos(static_cast<real>(theta)) *
-                         (std::cos(phi) * x.e1[c] + std::sin(phi) * x.e2[c]) +
+            dir[c] = std::cos(static_cast<real>(theta)) * (std::cos(phi) * x.e1[c] + std::sin(phi) * x.e2[c]) +
                      side * std::sin(static_cast<real>(theta)) * x.n[c];
         normalize(dir);
         const real length = 0.5L + 2.5L * uniform(rng);
@@ -623,8 +608,7 @@ void grazing(double theta, uint64_t seed, const char *name) {
         if (check_known_point(t, r, h, res, length)) ++before;
     }
     char extra[80];
-    std::snprintf(extra, sizeof extra, ", theta %g, %zu with a root before the point", theta,
-                  before);
+    std::snprintf(extra, sizeof extra, ", theta %g, %zu with a root before the point", theta, before);
     finish(t, extra);
 }
 
@@ -639,19 +623,19 @@ void grazing_hard_cases(void **) {
     Tally t{"grazing hard cases"};
     const double rays[][6] = {
         // theta = 1e-6
-        {-2.184917342384781, 0.72249366986559049, 3.9345390936141267, 0.5131258130780435,
-         -0.14970742079040095, -0.84515654651270533},
-        {0.42348122590803783, -0.073550532496038615, 0.73358541231427465, -0.23910048372153725,
-         -0.57985970393616393, 0.77884124340920158},
-        {-0.74241361628154423, 0.72405174780764825, 0.6377979478041842, 0.68687732182256989,
-         0.086376706276024839, 0.72162220682207323},
+        {-2.184917342384781, 0.72249366986559049, 3.9345390936141267, 0.5131258130780435, -0.14970742079040095,
+         -0.84515654651270533},
+        {0.42348122590803783, -0.073550532496038615, 0.73358541231427465, -0.23910048372153725, -0.57985970393616393,
+         0.77884124340920158},
+        {-0.74241361628154423, 0.72405174780764825, 0.6377979478041842, 0.68687732182256989, 0.086376706276024839,
+         0.72162220682207323},
         // theta = 3e-7
-        {2.0104216877156493, 0.87221425316872858, 2.6361179983382357, -0.87527054271689286,
-         -0.47568733271854297, 0.08731001399148873},
-        {-3.8069465898838297, 1.4665763728621539, 2.2403077774867741, 0.46199307195485562,
-         -0.87019472707995804, -0.17124117036493544},
-        {1.3621204277900474, -0.1443415568866851, -0.78697122160037758, 0.53092399091874354,
-         0.042271390928255645, 0.84636448730786462},
+        {2.0104216877156493, 0.87221425316872858, 2.6361179983382357, -0.87527054271689286, -0.47568733271854297,
+         0.08731001399148873},
+        {-3.8069465898838297, 1.4665763728621539, 2.2403077774867741, 0.46199307195485562, -0.87019472707995804,
+         -0.17124117036493544},
+        {1.3621204277900474, -0.1443415568866851, -0.78697122160037758, 0.53092399091874354, 0.042271390928255645,
+         0.84636448730786462},
     };
     for (const auto &x : rays) {
         const ppm_ray r = make_ray(x, x + 3);
@@ -701,9 +685,7 @@ void edge_points(const ref::Patch &patch, int e, const real *out[4]) {
         out[k] = patch.p[index];
     }
 }
-bool same_point(const real *a, const real *b) {
-    return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
-}
+bool same_point(const real *a, const real *b) { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; }
 
 // (u, v) on edge e at running parameter s.
 void edge_parameter(int e, real s, real &u, real &v) {
@@ -723,8 +705,7 @@ std::vector<Seam> find_seams() {
         for (int ea = 0; ea < 4; ++ea) {
             const real *pa[4];
             edge_points(patches[a], ea, pa);
-            if (same_point(pa[0], pa[1]) && same_point(pa[1], pa[2]) && same_point(pa[2], pa[3]))
-                continue; // collapsed
+            if (same_point(pa[0], pa[1]) && same_point(pa[1], pa[2]) && same_point(pa[2], pa[3])) continue; // collapsed
             for (int b = a + 1; b < 32; ++b)
                 for (int eb = 0; eb < 4; ++eb) {
                     const real *pb[4];
@@ -827,8 +808,7 @@ void seam_and_corner_rays(void **) {
     }
     assert_true(used >= 8);
     char extra[80];
-    std::snprintf(extra, sizeof extra, ", %zu seams, %zu corners of >= 3 patches", seams.size(),
-                  used);
+    std::snprintf(extra, sizeof extra, ", %zu seams, %zu corners of >= 3 patches", seams.size(), used);
     finish(t, extra);
 }
 
@@ -840,8 +820,9 @@ void degenerate_points(void **) {
     // The apex as the file stores it (3.15 rounded to double) and the bottom centre.
     const real apex_d[3] = {0, 0, static_cast<real>(3.15)}, bottom[3] = {0, 0, 0};
     auto vertical_normal = [&](const ppm_ray &r, const ppm_hit &h, const ref::Result &res) {
-        check(t, std::isfinite(h.ng[0]) && std::isfinite(h.ng[1]) && std::isfinite(h.ng[2]) &&
-                     std::fabs(std::fabs(h.ng[2]) - 1) <= 1e-9,
+        check(t,
+              std::isfinite(h.ng[0]) && std::isfinite(h.ng[1]) && std::isfinite(h.ng[2]) &&
+                  std::fabs(std::fabs(h.ng[2]) - 1) <= 1e-9,
               "normal at the collapsed point is not (0, 0, +-1)", r, h, res);
     };
     ppm_hit h;
@@ -854,24 +835,20 @@ void degenerate_points(void **) {
         run(t, r, h, res);
         assert_true(res.decided);
         check(t, std::fabs(h.t - 2) <= g.tolerance, "vertical ray: apex not at t = 2", r, h, res);
-        check(t, h.prim_id >= 20 && h.prim_id <= 23, "vertical ray: apex not on patches 20-23",
-              r, h, res);
+        check(t, h.prim_id >= 20 && h.prim_id <= 23, "vertical ray: apex not on patches 20-23", r, h, res);
         vertical_normal(r, h, res);
-        check(t, distinct_real_roots(res, 1) == 2, "vertical ray: reference should see 2 points",
-              r, h, res);
+        check(t, distinct_real_roots(res, 1) == 2, "vertical ray: reference should see 2 points", r, h, res);
         // Past the apex: the bottom centre.
         const ppm_ray r2 = make_ray(o, d, 2.5);
         run(t, r2, h, res);
-        check(t, std::fabs(h.t - 5.15) <= g.tolerance,
-              "vertical ray: bottom centre not at t = 5.15", r2, h, res);
-        check(t, h.prim_id >= 28 && h.prim_id <= 31,
-              "vertical ray: bottom not on patches 28-31", r2, h, res);
+        check(t, std::fabs(h.t - 5.15) <= g.tolerance, "vertical ray: bottom centre not at t = 5.15", r2, h, res);
+        check(t, h.prim_id >= 28 && h.prim_id <= 31, "vertical ray: bottom not on patches 28-31", r2, h, res);
         vertical_normal(r2, h, res);
         // Occlusion just short of / just past the apex.
-        check(t, !library_occluded(make_ray(o, d, 0, 2 - 4 * g.tolerance)),
-              "vertical ray occluded before the apex", r, h, res);
-        check(t, library_occluded(make_ray(o, d, 0, 2 + 4 * g.tolerance)),
-              "vertical ray not occluded past the apex", r, h, res);
+        check(t, !library_occluded(make_ray(o, d, 0, 2 - 4 * g.tolerance)), "vertical ray occluded before the apex", r,
+              h, res);
+        check(t, library_occluded(make_ray(o, d, 0, 2 + 4 * g.tolerance)), "vertical ray not occluded past the apex", r,
+              h, res);
     }
     // Vertical rays from inside, upwards to the apex and downwards to the bottom centre, and
     // from below to the bottom centre.
@@ -879,13 +856,12 @@ void degenerate_points(void **) {
         const double o[3] = {0, 0, 1}, up[3] = {0, 0, 1}, down[3] = {0, 0, -1};
         ppm_ray r = make_ray(o, up);
         run(t, r, h, res);
-        check(t, std::fabs(h.t - (static_cast<double>(apex_d[2]) - 1)) <= g.tolerance,
-              "from inside: apex not hit", r, h, res);
+        check(t, std::fabs(h.t - (static_cast<double>(apex_d[2]) - 1)) <= g.tolerance, "from inside: apex not hit", r,
+              h, res);
         vertical_normal(r, h, res);
         r = make_ray(o, down);
         run(t, r, h, res);
-        check(t, std::fabs(h.t - 1) <= g.tolerance, "from inside: bottom centre not hit", r, h,
-              res);
+        check(t, std::fabs(h.t - 1) <= g.tolerance, "from inside: bottom centre not hit", r, h, res);
         vertical_normal(r, h, res);
         const double below[3] = {0, 0, -3};
         r = make_ray(below, up);
@@ -902,23 +878,20 @@ void degenerate_points(void **) {
         for (int k = 0; k < azimuths; ++k) {
             const double phi = 2 * M_PI * (k + 0.37) / azimuths;
             const real s = std::sin(static_cast<real>(a)), c = std::cos(static_cast<real>(a));
-            const real from_above[3] = {s * std::cos(static_cast<real>(phi)),
-                                        s * std::sin(static_cast<real>(phi)), -c};
+            const real from_above[3] = {s * std::cos(static_cast<real>(phi)), s * std::sin(static_cast<real>(phi)), -c};
             const real from_below[3] = {from_above[0], from_above[1], c};
             ppm_ray r = ray_through(apex_d, from_above, 2);
             if (run(t, r, h, res) != Verdict::undecided) {
-                check(t, std::fabs(h.t - 2) <= g.tolerance,
-                      "oblique ray: apex is not the first hit", r, h, res);
+                check(t, std::fabs(h.t - 2) <= g.tolerance, "oblique ray: apex is not the first hit", r, h, res);
                 // The normal near the apex tilts by about (distance from the apex) x curvature.
-                check(t, std::fabs(std::fabs(h.ng[2]) - 1) <= 1e-6,
-                      "oblique ray: apex normal not vertical", r, h, res);
+                check(t, std::fabs(std::fabs(h.ng[2]) - 1) <= 1e-6, "oblique ray: apex normal not vertical", r, h, res);
             }
             r = ray_through(bottom, from_below, 2);
             if (run(t, r, h, res) != Verdict::undecided) {
-                check(t, std::fabs(h.t - 2) <= g.tolerance,
-                      "oblique ray: bottom centre is not the first hit", r, h, res);
-                check(t, std::fabs(std::fabs(h.ng[2]) - 1) <= 1e-6,
-                      "oblique ray: bottom normal not vertical", r, h, res);
+                check(t, std::fabs(h.t - 2) <= g.tolerance, "oblique ray: bottom centre is not the first hit", r, h,
+                      res);
+                check(t, std::fabs(std::fabs(h.ng[2]) - 1) <= 1e-6, "oblique ray: bottom normal not vertical", r, h,
+                      res);
             }
         }
     finish(t);
@@ -961,8 +934,7 @@ void several_hits(void **) {
         const int distinct = distinct_real_roots(all, dlen);
         if (i < constructed && std::fabs(r.org[1]) < 4 && std::fabs(r.org[2] - 1.3) < 0.5) {
             // Through the body: at least two points (entering and leaving).
-            check(t, distinct >= 2, "horizontal ray through the body: fewer than 2 roots", r,
-                  library_hit(r), all);
+            check(t, distinct >= 2, "horizontal ray through the body: fewer than 2 roots", r, library_hit(r), all);
         }
         if (distinct < 2) continue;
         ++multi;
@@ -994,8 +966,7 @@ void several_hits(void **) {
         }
     }
     char extra[100];
-    std::snprintf(extra, sizeof extra, ", %zu rays with >= 2 roots, %zu occlusion checks", multi,
-                  occlusion_checks);
+    std::snprintf(extra, sizeof extra, ", %zu rays with >= 2 roots, %zu occlusion checks", multi, occlusion_checks);
     finish(t, extra);
     assert_true(multi >= (g.quick ? 20u : 200u));
 }
@@ -1008,8 +979,7 @@ void spawned_rays(void **) {
     test_rng rng{0x59a3};
     const std::vector<ppm_ray> primary = random_rays(scaled(2000), 0x59a4);
     std::vector<ppm_hit> hits(primary.size());
-    assert_int_equal(ppm_scene_intersect(g.scene, primary.data(), primary.size(), hits.data()),
-                     PPM_OK);
+    assert_int_equal(ppm_scene_intersect(g.scene, primary.data(), primary.size(), hits.data()), PPM_OK);
     // Roots this close to the spawned origin are a different surface within a hair of the
     // hit (where the handle and spout pass through the body): skipped, counted.
     const double near_origin = 1e-6 * g.diagonal;
@@ -1042,8 +1012,9 @@ void spawned_rays(void **) {
                     continue;
                 }
             }
-            check(t, std::fabs(off - 2 * hit.p_error) <= 1e-3 * hit.p_error &&
-                         along * (dir[0] * hit.ng[0] + dir[1] * hit.ng[1] + dir[2] * hit.ng[2]) > 0,
+            check(t,
+                  std::fabs(off - 2 * hit.p_error) <= 1e-3 * hit.p_error &&
+                      along * (dir[0] * hit.ng[0] + dir[1] * hit.ng[1] + dir[2] * hit.ng[2]) > 0,
                   "spawned origin is not 2 p_error off the surface on the side of dir", r, h, res);
             if (h.geom_id != PPM_INVALID_ID && h.t * dir_length(r) < near_origin) {
                 ++self_hits;
@@ -1055,8 +1026,7 @@ void spawned_rays(void **) {
         }
     }
     char extra[100];
-    std::snprintf(extra, sizeof extra,
-                  ", from %zu hits, %zu self hits, %zu skipped (surface near origin)", used,
+    std::snprintf(extra, sizeof extra, ", from %zu hits, %zu self hits, %zu skipped (surface near origin)", used,
                   self_hits, skipped);
     finish(t, extra);
 }
@@ -1066,8 +1036,8 @@ void spawned_rays(void **) {
 void all_cases_total(void **) {
     std::printf("total: %zu rays, %zu hits, %zu misses, %zu false hits, %zu wrong t, "
                 "%zu undecided, %zu tangent-ambiguous, %zu other failures, max |dt|/diag %.3g\n",
-                totals.rays, totals.hits, totals.misses, totals.false_hits, totals.wrong_t,
-                totals.undecided, totals.ambiguous, totals.other, totals.max_dt);
+                totals.rays, totals.hits, totals.misses, totals.false_hits, totals.wrong_t, totals.undecided,
+                totals.ambiguous, totals.other, totals.max_dt);
     assert_int_equal(totals.misses, 0);
     assert_int_equal(totals.false_hits, 0);
     assert_int_equal(totals.wrong_t, 0);
@@ -1090,18 +1060,12 @@ int main(int argc, char **argv) {
     }
     const auto start = std::chrono::steady_clock::now();
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(model_facts),
-        cmocka_unit_test(random_rays_match_reference),
-        cmocka_unit_test(grazing_rays_1e3),
-        cmocka_unit_test(grazing_rays_1e4),
-        cmocka_unit_test(grazing_rays_1e6),
-        cmocka_unit_test(grazing_hard_cases),
-        cmocka_unit_test(tangent_rays),
-        cmocka_unit_test(seam_and_corner_rays),
-        cmocka_unit_test(degenerate_points),
-        cmocka_unit_test(several_hits),
-        cmocka_unit_test(spawned_rays),
-        cmocka_unit_test(all_cases_total),
+        cmocka_unit_test(model_facts),       cmocka_unit_test(random_rays_match_reference),
+        cmocka_unit_test(grazing_rays_1e3),  cmocka_unit_test(grazing_rays_1e4),
+        cmocka_unit_test(grazing_rays_1e6),  cmocka_unit_test(grazing_hard_cases),
+        cmocka_unit_test(tangent_rays),      cmocka_unit_test(seam_and_corner_rays),
+        cmocka_unit_test(degenerate_points), cmocka_unit_test(several_hits),
+        cmocka_unit_test(spawned_rays),      cmocka_unit_test(all_cases_total),
     };
     const int failed = cmocka_run_group_tests(tests, setup, teardown);
     std::printf("test_teapot_reference: %.1f s\n",

@@ -53,8 +53,8 @@ static patches read_teapot(void) {
         lo[k % 3] = fmin(lo[k % 3], t.points[k]);
         hi[k % 3] = fmax(hi[k % 3], t.points[k]);
     }
-    t.diagonal = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                      (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    t.diagonal =
+        sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
     return t;
 }
 
@@ -374,7 +374,8 @@ static void check_triangles(const patches *t, const mesh_view *m) {
         const double *p0 = m->positions + 3 * c[0], *p1 = m->positions + 3 * c[1], *p2 = m->positions + 3 * c[2];
         const double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
         const double e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-        const double w[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        const double w[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                             e1[0] * e2[1] - e1[1] * e2[0]};
         const double area = 0.5 * sqrt(dot3(w, w));
         if (area < smallest) smallest = area;
         if (!(area > 1e-12 * t->diagonal * t->diagonal))
@@ -414,8 +415,8 @@ static void test_adaptive_deviation_on_every_patch(void **state) {
         /* The library's own figure agrees with this independent one (it samples more finely
          * near the maxima, so it may be slightly larger). */
         assert_true(fabs(reported - worst) <= 0.02 * tolerance);
-        print_message("tolerance %g: %zu triangles, deviation %.6g (library %.6g)\n", tolerance,
-                      m.triangle_count, worst, reported);
+        print_message("tolerance %g: %zu triangles, deviation %.6g (library %.6g)\n", tolerance, m.triangle_count,
+                      worst, reported);
         ppm_mesh_release(mesh);
     }
 }
@@ -426,8 +427,8 @@ static void test_adaptive_is_watertight(void **state) {
     const mesh_view m = view_of(mesh);
     check_welding(&m);
     const size_t boundary = check_watertight(t, &m);
-    print_message("%zu triangles, %zu vertices, %zu positions, %zu boundary edges\n", m.triangle_count,
-                  m.vertex_count, m.welded_count, boundary);
+    print_message("%zu triangles, %zu vertices, %zu positions, %zu boundary edges\n", m.triangle_count, m.vertex_count,
+                  m.welded_count, boundary);
     ppm_mesh_release(mesh);
 }
 
@@ -588,19 +589,25 @@ static void test_bad_arguments(void **state) {
     const patches *t = *state;
     ppm_mesh mesh = NULL;
     const double tolerance = 1e-2;
-    assert_ppm_error(ppm_tessellate_patches(NULL, 1, tolerance, 0, &mesh), PPM_ERROR_INVALID_ARGUMENT, "control_points");
-    assert_ppm_error(ppm_tessellate_patches(t->points, 0, tolerance, 0, &mesh), PPM_ERROR_INVALID_ARGUMENT, "patch_count");
+    assert_ppm_error(ppm_tessellate_patches(NULL, 1, tolerance, 0, &mesh), PPM_ERROR_INVALID_ARGUMENT,
+                     "control_points");
+    assert_ppm_error(ppm_tessellate_patches(t->points, 0, tolerance, 0, &mesh), PPM_ERROR_INVALID_ARGUMENT,
+                     "patch_count");
     assert_ppm_error(ppm_tessellate_patches(t->points, 20000000, tolerance, 0, &mesh), PPM_ERROR_INVALID_ARGUMENT,
                      "patch_count");
-    assert_ppm_error(ppm_tessellate_patches(t->points, t->count, tolerance, 0, NULL), PPM_ERROR_INVALID_ARGUMENT, "out_mesh");
+    assert_ppm_error(ppm_tessellate_patches(t->points, t->count, tolerance, 0, NULL), PPM_ERROR_INVALID_ARGUMENT,
+                     "out_mesh");
     const double bad[] = {0, -1, NAN, INFINITY};
     for (int k = 0; k < 4; ++k)
         assert_ppm_error(ppm_tessellate_patches(t->points, t->count, bad[k], 0, &mesh), PPM_ERROR_INVALID_ARGUMENT,
                          "tolerance");
-    assert_ppm_error(ppm_tessellate_patches(t->points, t->count, tolerance, 4097, &mesh), PPM_ERROR_INVALID_ARGUMENT, "grid");
+    assert_ppm_error(ppm_tessellate_patches(t->points, t->count, tolerance, 4097, &mesh), PPM_ERROR_INVALID_ARGUMENT,
+                     "grid");
     /* Absurd budgets are refused up front, naming the limit. */
-    assert_ppm_error(ppm_tessellate_patches(t->points, t->count, 0, 4096, &mesh), PPM_ERROR_INVALID_ARGUMENT, "200000000");
-    assert_ppm_error(ppm_tessellate_patches(t->points, t->count, 1e-12, 0, &mesh), PPM_ERROR_INVALID_ARGUMENT, "200000000");
+    assert_ppm_error(ppm_tessellate_patches(t->points, t->count, 0, 4096, &mesh), PPM_ERROR_INVALID_ARGUMENT,
+                     "200000000");
+    assert_ppm_error(ppm_tessellate_patches(t->points, t->count, 1e-12, 0, &mesh), PPM_ERROR_INVALID_ARGUMENT,
+                     "200000000");
     double *copy = malloc(sizeof(double) * 48 * t->count);
     assert_non_null(copy);
     memcpy(copy, t->points, sizeof(double) * 48 * t->count);

@@ -21,9 +21,7 @@ using namespace ppm;
 
 namespace {
 
-std::string temp_path(const char *name) {
-    return "/tmp/ppm_test_texture_" + std::to_string(getpid()) + "_" + name;
-}
+std::string temp_path(const char *name) { return "/tmp/ppm_test_texture_" + std::to_string(getpid()) + "_" + name; }
 
 // 2 x 2 RGB image: top row (255, 0, 0) (0, 255, 0), bottom row (0, 0, 255) (128, 128, 128).
 std::string write_png() {
@@ -163,7 +161,9 @@ void truncated_png_is_a_quiet_io_error(void **) {
 void exr_attribute_beyond_the_file_is_refused(void **) {
     const std::string path = temp_path("attribute.exr");
     std::FILE *f = std::fopen(path.c_str(), "wb");
-    std::fwrite("v/1\x01\x02\x00\x00\x00" "a\x00string\x00\x7c\x00\x00\x6fxx", 1, 23, f);
+    std::fwrite("v/1\x01\x02\x00\x00\x00"
+                "a\x00string\x00\x7c\x00\x00\x6fxx",
+                1, 23, f);
     std::fclose(f);
     try {
         Texture::load(path);
@@ -196,7 +196,8 @@ void oversized_header_is_refused_before_allocating(void **) {
         fail_msg("oversized texture loaded");
     } catch (const Error &e) {
         if (e.status() != PPM_ERROR_PARSE) fail_msg("status %d: %s", e.status(), e.what());
-        assert_non_null(std::strstr(e.what(), "its header claims 10000 x 10000 pixels, more than its 19 bytes can hold"));
+        assert_non_null(
+            std::strstr(e.what(), "its header claims 10000 x 10000 pixels, more than its 19 bytes can hold"));
     }
     std::remove(path.c_str());
 }

@@ -255,8 +255,8 @@ void cancel_during_pass(Fixture *f, const char *mode, int completed_passes) {
     std::string message;
     const ppm_status status = cancelled_pass(r, *f, message, [&] { read_during = read_image(r, during_image); });
     if (status != PPM_ERROR_CANCELLED)
-        fail_msg("%s pass %d returned %s (%s), expected cancelled", mode, completed_passes + 1, ppm_status_string(status),
-                 message.c_str());
+        fail_msg("%s pass %d returned %s (%s), expected cancelled", mode, completed_passes + 1,
+                 ppm_status_string(status), message.c_str());
     assert_non_null(std::strstr(message.c_str(), "cancelled"));
     // The cancelled pass left nothing: the image and counters of the last completed pass.
     assert_true(read_during);
@@ -432,9 +432,9 @@ struct QueryAnswers {
     std::vector<double> patches;
     bool operator==(const QueryAnswers &o) const {
         return hits.size() == o.hits.size() &&
-               std::memcmp(hits.data(), o.hits.data(), hits.size() * sizeof(ppm_hit)) == 0 &&
-               occluded == o.occluded && std::memcmp(lower, o.lower, sizeof lower) == 0 &&
-               std::memcmp(upper, o.upper, sizeof upper) == 0 && patches == o.patches;
+               std::memcmp(hits.data(), o.hits.data(), hits.size() * sizeof(ppm_hit)) == 0 && occluded == o.occluded &&
+               std::memcmp(lower, o.lower, sizeof lower) == 0 && std::memcmp(upper, o.upper, sizeof upper) == 0 &&
+               patches == o.patches;
     }
 };
 

@@ -55,11 +55,11 @@ typedef enum ppm_status {
     PPM_ERROR_INVALID_ARGUMENT = 1,  /* NULL where a pointer is needed, NaN/Inf, bad size, unknown key */
     PPM_ERROR_INVALID_OPERATION = 2, /* call not allowed in the object's state (e.g. query before commit) */
     PPM_ERROR_OUT_OF_MEMORY = 3,
-    PPM_ERROR_IO = 4,                /* a file could not be opened or read */
-    PPM_ERROR_PARSE = 5,             /* a file's content is malformed; the message names file and line */
-    PPM_ERROR_UNSUPPORTED = 6,       /* valid request the library cannot serve (e.g. CPU without SSE2) */
+    PPM_ERROR_IO = 4,          /* a file could not be opened or read */
+    PPM_ERROR_PARSE = 5,       /* a file's content is malformed; the message names file and line */
+    PPM_ERROR_UNSUPPORTED = 6, /* valid request the library cannot serve (e.g. CPU without SSE2) */
     PPM_ERROR_CANCELLED = 7,
-    PPM_ERROR_INTERNAL = 8           /* a bug in libppm: please report the message */
+    PPM_ERROR_INTERNAL = 8 /* a bug in libppm: please report the message */
 } ppm_status;
 
 /* Version of the library actually loaded (compare with PPM_VERSION from ppm/config.h):
@@ -110,8 +110,7 @@ PPM_API ppm_status ppm_context_get_double(ppm_context context, const char *key, 
 /* Sets (or clears, with callback NULL) the error callback; user_data is passed back as it is
  * and never dereferenced by the library. Errors: INVALID_ARGUMENT (context NULL). Not
  * concurrently with other calls using the same context. */
-PPM_API ppm_status ppm_context_set_error_callback(ppm_context context, ppm_error_callback callback,
-                                                  void *user_data);
+PPM_API ppm_status ppm_context_set_error_callback(ppm_context context, ppm_error_callback callback, void *user_data);
 
 /* ---------------------------------------------------------------------------------------- */
 /* Scene: geometry, built then committed, then queried.                                      */
@@ -173,8 +172,8 @@ PPM_API ppm_status ppm_scene_get_double(ppm_scene scene, const char *key, double
  *   S(u, v) = sum_i sum_j B_i(v) B_j(u) P[i][j],  u, v in [0, 1], B = cubic Bernstein,
  * i.e. u runs along a row of four points, v across rows (the .bpt and Embree convention).
  * Patches are two-sided. Collapsed edges (a row of equal points) are allowed. */
-PPM_API ppm_status ppm_scene_add_bezier_patches(ppm_scene scene, const double *control_points,
-                                                size_t patch_count, uint32_t *out_geom_id);
+PPM_API ppm_status ppm_scene_add_bezier_patches(ppm_scene scene, const double *control_points, size_t patch_count,
+                                                uint32_t *out_geom_id);
 
 /* Reads a .bpt file (patch count, then per patch a "3 3" degree line and 16 "x y z" lines)
  * and adds its patches as one geometry. Errors: IO (cannot open, read error), PARSE (the
@@ -184,22 +183,19 @@ PPM_API ppm_status ppm_scene_load_bpt(ppm_scene scene, const char *path, uint32_
 
 /* Sphere with centre and radius > 0. Hit (u, v) = (phi / 2pi, theta / pi), with theta measured
  * from +z and phi from +x towards +y (Mitsuba 3's convention). */
-PPM_API ppm_status ppm_scene_add_sphere(ppm_scene scene, const double center[3], double radius,
-                                        uint32_t *out_geom_id);
+PPM_API ppm_status ppm_scene_add_sphere(ppm_scene scene, const double center[3], double radius, uint32_t *out_geom_id);
 
 /* Parallelogram (a rectangle when the edges are orthogonal) {origin + s*edge_u + t*edge_v :
  * s, t in [0, 1]}; hit (u, v) = (s, t); geometric normal edge_u x edge_v. Two-sided. */
-PPM_API ppm_status ppm_scene_add_quad(ppm_scene scene, const double origin[3],
-                                      const double edge_u[3], const double edge_v[3],
-                                      uint32_t *out_geom_id);
+PPM_API ppm_status ppm_scene_add_quad(ppm_scene scene, const double origin[3], const double edge_u[3],
+                                      const double edge_v[3], uint32_t *out_geom_id);
 
 /* Triangle mesh: vertex_count positions (3 doubles each), triangle_count index triples.
  * `normals` (3 doubles per vertex) and `uvs` (2 doubles per vertex) may be NULL. Hit (u, v)
  * are the barycentric coordinates of vertices 1 and 2 (Embree's); the shading normal
  * interpolates `normals` when given. Two-sided. */
-PPM_API ppm_status ppm_scene_add_triangle_mesh(ppm_scene scene, const double *positions,
-                                               size_t vertex_count, const uint32_t *indices,
-                                               size_t triangle_count, const double *normals,
+PPM_API ppm_status ppm_scene_add_triangle_mesh(ppm_scene scene, const double *positions, size_t vertex_count,
+                                               const uint32_t *indices, size_t triangle_count, const double *normals,
                                                const double *uvs, uint32_t *out_geom_id);
 
 /* Reads a Wavefront OBJ file (v, vn, vt and f statements; all objects become one triangle
@@ -218,19 +214,16 @@ PPM_API ppm_status ppm_scene_load_obj(ppm_scene scene, const char *path, uint32_
  * (uniform scale). Default identity. Applied at commit. Errors: INVALID_ARGUMENT (a NaN or
  * infinite element, a projective last row, a singular 3x3, a non-similarity on a sphere,
  * the placed geometry beyond the coordinate limit; the scene is unchanged). */
-PPM_API ppm_status ppm_scene_set_geometry_transform(ppm_scene scene, uint32_t geom_id,
-                                                    const double matrix[16]);
+PPM_API ppm_status ppm_scene_set_geometry_transform(ppm_scene scene, uint32_t geom_id, const double matrix[16]);
 
 /* User material id reported in every hit of this geometry (default 0). Any id is accepted
  * here; a renderer checks that it names a material of the scene (ppm_renderer_create). */
-PPM_API ppm_status ppm_scene_set_geometry_material(ppm_scene scene, uint32_t geom_id,
-                                                   uint32_t material_id);
+PPM_API ppm_status ppm_scene_set_geometry_material(ppm_scene scene, uint32_t geom_id, uint32_t material_id);
 
 /* Number of primitives of a geometry: patches, triangles, or 1 for a sphere or quad.
  * Getters (this one and the three below) may run concurrently with queries and other
  * getters on the same scene. */
-PPM_API ppm_status ppm_scene_get_primitive_count(ppm_scene scene, uint32_t geom_id,
-                                                 size_t *out_count);
+PPM_API ppm_status ppm_scene_get_primitive_count(ppm_scene scene, uint32_t geom_id, size_t *out_count);
 
 /* Number of geometries; their ids are 0 .. count - 1. */
 PPM_API ppm_status ppm_scene_get_geometry_count(ppm_scene scene, size_t *out_count);
@@ -239,8 +232,7 @@ PPM_API ppm_status ppm_scene_get_geometry_count(ppm_scene scene, size_t *out_cou
  * ppm_scene_add_bezier_patches: 48 doubles per patch into `out`, which holds `capacity`
  * doubles. Errors: INVALID_ARGUMENT (not a patch geometry, capacity below 48 * patch
  * count), INVALID_OPERATION (scene not committed). */
-PPM_API ppm_status ppm_scene_get_bezier_patches(ppm_scene scene, uint32_t geom_id, double *out,
-                                                size_t capacity);
+PPM_API ppm_status ppm_scene_get_bezier_patches(ppm_scene scene, uint32_t geom_id, double *out, size_t capacity);
 
 /* Builds the acceleration structure on the context's threads. Required after any change
  * and before queries. Errors: INVALID_OPERATION (empty scene), INVALID_ARGUMENT (every
@@ -286,12 +278,10 @@ typedef struct ppm_hit {
  * Large batches run on the context's worker threads. Errors: INVALID_ARGUMENT (NULL, a ray with NaN/Inf origin, zero or
  * non-finite direction, tnear < 0 or tnear > tfar: the message names the first bad index),
  * INVALID_OPERATION (scene not committed). Thread safe on a committed scene. */
-PPM_API ppm_status ppm_scene_intersect(ppm_scene scene, const ppm_ray *rays, size_t count,
-                                       ppm_hit *hits);
+PPM_API ppm_status ppm_scene_intersect(ppm_scene scene, const ppm_ray *rays, size_t count, ppm_hit *hits);
 
 /* Whether each ray hits anything in [tnear, tfar]: occluded[i] = 1 or 0. Same rules. */
-PPM_API ppm_status ppm_scene_occluded(ppm_scene scene, const ppm_ray *rays, size_t count,
-                                      uint8_t *occluded);
+PPM_API ppm_status ppm_scene_occluded(ppm_scene scene, const ppm_ray *rays, size_t count, uint8_t *occluded);
 
 /* A ray leaving a hit point in direction `dir` (either side of the surface) that does not
  * hit the surface at its own origin: the origin is moved off the surface by twice p_error
@@ -337,8 +327,8 @@ typedef struct ppm_mesh_t *ppm_mesh;
  * UNSUPPORTED (refinement could not reach the tolerance: it is below what double precision
  * resolves on these patches, or a patch folds so sharply that the nearest-point search stalls).
  * Thread safe; large requests use all hardware threads. */
-PPM_API ppm_status ppm_tessellate_patches(const double *control_points, size_t patch_count,
-                                          double tolerance, uint32_t grid, ppm_mesh *out_mesh);
+PPM_API ppm_status ppm_tessellate_patches(const double *control_points, size_t patch_count, double tolerance,
+                                          uint32_t grid, ppm_mesh *out_mesh);
 
 /* Adds / drops a reference (atomic: thread safe). Pointers returned by the getters stay valid
  * until the last reference is released. Every mesh call fails with INVALID_ARGUMENT for a
@@ -348,14 +338,12 @@ PPM_API void ppm_mesh_release(ppm_mesh mesh);
 
 /* Vertex arrays owned by the mesh: positions and normals 3 doubles per vertex, uvs 2 (the
  * vertex's patch parameters). Any output pointer may be NULL if not wanted. Thread safe. */
-PPM_API ppm_status ppm_mesh_get_vertices(ppm_mesh mesh, const double **out_positions,
-                                         const double **out_normals, const double **out_uvs,
-                                         size_t *out_vertex_count);
+PPM_API ppm_status ppm_mesh_get_vertices(ppm_mesh mesh, const double **out_positions, const double **out_normals,
+                                         const double **out_uvs, size_t *out_vertex_count);
 
 /* Triangles: 3 vertex indices each (into the arrays of ppm_mesh_get_vertices). Either output
  * may be NULL. Thread safe. */
-PPM_API ppm_status ppm_mesh_get_triangles(ppm_mesh mesh, const uint32_t **out_indices,
-                                          size_t *out_triangle_count);
+PPM_API ppm_status ppm_mesh_get_triangles(ppm_mesh mesh, const uint32_t **out_indices, size_t *out_triangle_count);
 
 /* For each triangle, the index of the patch it approximates. Thread safe. */
 PPM_API ppm_status ppm_mesh_get_triangle_patches(ppm_mesh mesh, const uint32_t **out_patch_ids);
@@ -399,9 +387,8 @@ PPM_API ppm_status ppm_scene_add_dielectric_material(ppm_scene scene, double int
                                                      uint32_t *out_material_id);
 /* Diffuse base under a smooth dielectric coat, like glazed porcelain (Mitsuba `plastic` with
  * nonlinear = false: `diffuse_reflectance`, `int_ior`, `ext_ior`). */
-PPM_API ppm_status ppm_scene_add_coated_material(ppm_scene scene, const double diffuse_reflectance[3],
-                                                 double int_ior, double ext_ior,
-                                                 uint32_t *out_material_id);
+PPM_API ppm_status ppm_scene_add_coated_material(ppm_scene scene, const double diffuse_reflectance[3], double int_ior,
+                                                 double ext_ior, uint32_t *out_material_id);
 
 /* Gives a material (diffuse, mirror or coated) an image texture that replaces its colour.
  * The file is read now through OpenImageIO (any format it reads; 8/16-bit images are decoded
@@ -425,20 +412,18 @@ PPM_API ppm_status ppm_scene_set_patch_uv_rects(ppm_scene scene, uint32_t geom_i
  * are finite, >= 0 and at most 1e20 per channel; positions obey the coordinate limit.
  * Errors: INVALID_ARGUMENT naming the bad value. */
 /* Point light (Mitsuba `point`): `intensity` in W/sr per channel, power 4 pi intensity. */
-PPM_API ppm_status ppm_scene_add_point_light(ppm_scene scene, const double position[3],
-                                             const double intensity[3], uint32_t *out_light_id);
+PPM_API ppm_status ppm_scene_add_point_light(ppm_scene scene, const double position[3], const double intensity[3],
+                                             uint32_t *out_light_id);
 /* Spot light (Mitsuba `spot`): `intensity` in W/sr on the axis from position to target, full
  * out to beam_width degrees and falling linearly in angle to 0 at cutoff_angle degrees
  * (0 < beam_width <= cutoff_angle <= 90; Mitsuba's defaults are 15 and 20). */
-PPM_API ppm_status ppm_scene_add_spot_light(ppm_scene scene, const double position[3],
-                                            const double target[3], const double intensity[3],
-                                            double cutoff_angle, double beam_width,
+PPM_API ppm_status ppm_scene_add_spot_light(ppm_scene scene, const double position[3], const double target[3],
+                                            const double intensity[3], double cutoff_angle, double beam_width,
                                             uint32_t *out_light_id);
 /* Makes a quad or sphere an area light (Mitsuba `area`): constant `radiance` (W/(m^2 sr) per
  * channel) on the side the normal points to (quad: edge_u x edge_v; sphere: outside).
  * Black turns it off. Errors: INVALID_ARGUMENT (other kinds, negative or NaN values). */
-PPM_API ppm_status ppm_scene_set_geometry_emission(ppm_scene scene, uint32_t geom_id,
-                                                   const double radiance[3]);
+PPM_API ppm_status ppm_scene_set_geometry_emission(ppm_scene scene, uint32_t geom_id, const double radiance[3]);
 
 /* ---------------------------------------------------------------------------------------- */
 /* Rendering: progressive photon mapping                                                     */
@@ -508,11 +493,9 @@ static inline void ppm_camera_v2_init(ppm_camera_v2 *camera) {
  * meanwhile but not changed. Errors: INVALID_ARGUMENT (NULL, a bad camera field naming it,
  * a geometry without a valid material, emission on a kind that cannot emit),
  * INVALID_OPERATION (scene not committed). */
-PPM_API ppm_status ppm_renderer_create(ppm_scene scene, const ppm_camera *camera,
-                                       ppm_renderer *out_renderer);
+PPM_API ppm_status ppm_renderer_create(ppm_scene scene, const ppm_camera *camera, ppm_renderer *out_renderer);
 /* The same from an extensible camera; errors also as described at ppm_camera_v2. */
-PPM_API ppm_status ppm_renderer_create_v2(ppm_scene scene, const ppm_camera_v2 *camera,
-                                          ppm_renderer *out_renderer);
+PPM_API ppm_status ppm_renderer_create_v2(ppm_scene scene, const ppm_camera_v2 *camera, ppm_renderer *out_renderer);
 /* The renderer's camera into *out_camera, whose `size` the caller sets (ppm_camera_v2_init);
  * the library writes that many bytes (0 beyond the fields it knows) and leaves `size`.
  * Errors: INVALID_ARGUMENT (NULL, size too small). Thread safe, also during a pass. */
@@ -549,8 +532,8 @@ PPM_API ppm_status ppm_renderer_get_double(ppm_renderer renderer, const char *ke
 /* Writes the string setting into out (NUL-terminated, truncated to capacity) and its full
  * length to *out_length when out_length is not NULL. `out` may be NULL when capacity is 0,
  * to ask for the length only. */
-PPM_API ppm_status ppm_renderer_get_string(ppm_renderer renderer, const char *key, char *out,
-                                           size_t capacity, size_t *out_length);
+PPM_API ppm_status ppm_renderer_get_string(ppm_renderer renderer, const char *key, char *out, size_t capacity,
+                                           size_t *out_length);
 
 /* Runs one pass on the context's threads: eye pass, photon pass (photons_per_pass photon
  * paths), statistics update. Deterministic: the image after n passes depends only on the
@@ -572,8 +555,7 @@ PPM_API ppm_status ppm_renderer_cancel(ppm_renderer renderer);
  * alpha-reduced photon count N). `count` is the number of floats `out` holds; it must be at
  * least width * height * channels. Errors: INVALID_ARGUMENT (NULL, unknown layer, count too
  * small). Thread safe, also during a pass. */
-PPM_API ppm_status ppm_renderer_get_layer(ppm_renderer renderer, const char *layer, float *out,
-                                          size_t count);
+PPM_API ppm_status ppm_renderer_get_layer(ppm_renderer renderer, const char *layer, float *out, size_t count);
 
 /* Checkpoints: the renderer's whole progressive state (pass count, photons emitted, every
  * pixel's statistics) in a versioned binary file, so that a long render can stop and go on

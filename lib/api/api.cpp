@@ -3,6 +3,8 @@
 // objects and turns every exception into a ppm_status plus the per-thread message.
 #include <ppm/ppm.h>
 
+#include "api/api_keys.h"
+#include "api/api_support.h"
 #include "core/context.h"
 #include "core/error.h"
 #include "core/ref_counted.h"
@@ -15,8 +17,6 @@
 #include "io/obj_reader.h"
 #include "scene/scene.h"
 #include "scene/spawn.h"
-#include "api/api_keys.h"
-#include "api/api_support.h"
 
 #include <cstring>
 #include <new>
@@ -55,8 +55,7 @@ void check_world_box(ppm::Geometry &geometry, const ppm::Affine &transform) {
     for (const double v : {box.lower.x, box.lower.y, box.lower.z, box.upper.x, box.upper.y, box.upper.z})
         if (!ppm::within(v, ppm::kCoordinateLimit))
             invalid_argument(std::string("the bounding box of the ") + geometry.kind() + " reaches the coordinate " +
-                             ppm::format_number(v) +
-                             ", beyond +-" + ppm::format_number(ppm::kCoordinateLimit) +
+                             ppm::format_number(v) + ", beyond +-" + ppm::format_number(ppm::kCoordinateLimit) +
                              " (the limit of scene coordinates)");
 }
 
@@ -227,8 +226,8 @@ ppm_status ppm_scene_get_double(ppm_scene scene, const char *key, double *out_va
     });
 }
 
-ppm_status ppm_scene_add_bezier_patches(ppm_scene scene, const double *control_points,
-                                        size_t patch_count, uint32_t *out_geom_id) {
+ppm_status ppm_scene_add_bezier_patches(ppm_scene scene, const double *control_points, size_t patch_count,
+                                        uint32_t *out_geom_id) {
     return add_geometry(scene, out_geom_id, [&] {
         std::vector<ppm::BezierPatch> patches = read_patches(control_points, patch_count);
         return std::make_unique<ppm::PatchGeometry>(std::move(patches));
@@ -252,8 +251,8 @@ ppm_status ppm_scene_add_sphere(ppm_scene scene, const double center[3], double 
     });
 }
 
-ppm_status ppm_scene_add_quad(ppm_scene scene, const double origin[3], const double edge_u[3],
-                              const double edge_v[3], uint32_t *out_geom_id) {
+ppm_status ppm_scene_add_quad(ppm_scene scene, const double origin[3], const double edge_u[3], const double edge_v[3],
+                              uint32_t *out_geom_id) {
     return add_geometry(scene, out_geom_id, [&] {
         const ppm::Vec3 o = finite_point(origin, "origin");
         const ppm::Vec3 eu = finite_point(edge_u, "edge_u");
@@ -266,8 +265,8 @@ ppm_status ppm_scene_add_quad(ppm_scene scene, const double origin[3], const dou
 }
 
 ppm_status ppm_scene_add_triangle_mesh(ppm_scene scene, const double *positions, size_t vertex_count,
-                                       const uint32_t *indices, size_t triangle_count,
-                                       const double *normals, const double *uvs, uint32_t *out_geom_id) {
+                                       const uint32_t *indices, size_t triangle_count, const double *normals,
+                                       const double *uvs, uint32_t *out_geom_id) {
     return add_geometry(scene, out_geom_id, [&] {
         require(positions, "positions");
         require(indices, "indices");
@@ -293,8 +292,8 @@ ppm_status ppm_scene_add_triangle_mesh(ppm_scene scene, const double *positions,
         mesh.indices.assign(indices, indices + 3 * triangle_count);
         for (size_t k = 0; k < mesh.indices.size(); ++k)
             if (mesh.indices[k] >= vertex_count)
-                invalid_argument("triangle " + std::to_string(k / 3) + " uses vertex " + std::to_string(mesh.indices[k]) +
-                                 " of " + std::to_string(vertex_count));
+                invalid_argument("triangle " + std::to_string(k / 3) + " uses vertex " +
+                                 std::to_string(mesh.indices[k]) + " of " + std::to_string(vertex_count));
         if (normals) {
             mesh.normals.resize(vertex_count);
             for (size_t k = 0; k < vertex_count; ++k) {
@@ -328,15 +327,15 @@ ppm_status ppm_scene_set_geometry_transform(ppm_scene scene, uint32_t geom_id, c
         for (int k = 0; k < 16; ++k)
             if (!std::isfinite(matrix[k])) invalid_argument("matrix element " + std::to_string(k) + " is not finite");
         if (matrix[12] != 0 || matrix[13] != 0 || matrix[14] != 0 || matrix[15] != 1)
-            invalid_argument("the last row of the matrix must be (0, 0, 0, 1): projective transforms are not supported");
+            invalid_argument(
+                "the last row of the matrix must be (0, 0, 0, 1): projective transforms are not supported");
         for (int r = 0; r < 3; ++r)
             for (int c = 0; c < 4; ++c) transform.m[r][c] = matrix[4 * r + c];
         const double det = transform.determinant();
         double scale = 0;
         for (int r = 0; r < 3; ++r)
             for (int c = 0; c < 3; ++c) scale = std::max(scale, std::fabs(transform.m[r][c]));
-        if (!(std::fabs(det) > 1e-12 * scale * scale * scale))
-            invalid_argument("the matrix's upper 3x3 is singular");
+        if (!(std::fabs(det) > 1e-12 * scale * scale * scale)) invalid_argument("the matrix's upper 3x3 is singular");
         try {
             g.check_transform(transform);
             check_world_box(g, transform);
@@ -445,7 +444,6 @@ namespace {
 
 constexpr uint32_t max_tessellation_grid = 4096;
 
-
 template <class Body> ppm_status mesh_call(ppm_mesh mesh, Body &&body) noexcept {
     return guarded(nullptr, [&] {
         require(mesh, "mesh");
@@ -461,8 +459,8 @@ template <class T> void write_out(T *out, T value) {
 
 extern "C" {
 
-ppm_status ppm_tessellate_patches(const double *control_points, size_t patch_count, double tolerance,
-                                  uint32_t grid, ppm_mesh *out_mesh) {
+ppm_status ppm_tessellate_patches(const double *control_points, size_t patch_count, double tolerance, uint32_t grid,
+                                  ppm_mesh *out_mesh) {
     return guarded(nullptr, [&] {
         require(out_mesh, "out_mesh");
         const std::vector<ppm::BezierPatch> patches = read_patches(control_points, patch_count);

@@ -21,9 +21,9 @@ constexpr size_t kMaxCameraV2Size = 4096;
 
 void check_size(size_t size, const char *name) {
     if (size < kFirstCameraV2Size || size > kMaxCameraV2Size)
-        invalid_argument(std::string(name) + "->size is " + std::to_string(size) + ", expected sizeof(ppm_camera_v2) (" +
-                         std::to_string(sizeof(ppm_camera_v2)) + " in this libppm): initialise the struct with " +
-                         "ppm_camera_v2_init");
+        invalid_argument(std::string(name) + "->size is " + std::to_string(size) +
+                         ", expected sizeof(ppm_camera_v2) (" + std::to_string(sizeof(ppm_camera_v2)) +
+                         " in this libppm): initialise the struct with " + "ppm_camera_v2_init");
 }
 
 // The fields ppm_camera and ppm_camera_v2 share.

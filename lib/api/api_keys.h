@@ -21,8 +21,8 @@ struct KeyTable {
     const Key *keys;
     std::size_t count;
 
-    template <std::size_t N>
-    constexpr KeyTable(const char *what_, const Key (&keys_)[N]) : what(what_), keys(keys_), count(N) {}
+    template <std::size_t N> constexpr KeyTable(const char *what_, const Key (&keys_)[N])
+        : what(what_), keys(keys_), count(N) {}
 
     // The type of `key`. Throws INVALID_ARGUMENT naming the key and listing the table when the
     // key is NULL or unknown.

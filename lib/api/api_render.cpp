@@ -1,12 +1,12 @@
 // The C ABI of materials, textures, lights and the renderer.
 #include <ppm/ppm.h>
 
+#include "api/api_camera.h"
+#include "api/api_renderer.h"
 #include "api/api_support.h"
 #include "geometry/patch_geometry.h"
 #include "geometry/quad_geometry.h"
 #include "geometry/sphere_geometry.h"
-#include "api/api_camera.h"
-#include "api/api_renderer.h"
 
 #include <cmath>
 #include <cstring>
@@ -35,7 +35,8 @@ ppm::Rgb read_emission(const double *c, const char *name) {
 
 ppm::Rgb read_reflectance(const double *c, const char *name) {
     const ppm::Rgb rgb = read_color(c, name);
-    if (rgb.max() > 1) invalid_argument(std::string(name) + " must be at most 1 in every channel (energy conservation)");
+    if (rgb.max() > 1)
+        invalid_argument(std::string(name) + " must be at most 1 in every channel (energy conservation)");
     return rgb;
 }
 
@@ -49,19 +50,28 @@ template <class Make> ppm_status add_material(ppm_scene scene, uint32_t *out_id,
 // The renderer's read-only values (its settings are RenderSettings' keys): true and the value
 // in *out when `key` is one of the type asked for.
 bool read_only_int(const ppm::Renderer &r, const std::string &key, int64_t *out) {
-    if (key == "passes") *out = static_cast<int64_t>(r.passes());
-    else if (key == "photons_emitted") *out = static_cast<int64_t>(r.photons_emitted());
-    else if (key == "width") *out = r.width();
-    else if (key == "height") *out = r.height();
-    else return false;
+    if (key == "passes")
+        *out = static_cast<int64_t>(r.passes());
+    else if (key == "photons_emitted")
+        *out = static_cast<int64_t>(r.photons_emitted());
+    else if (key == "width")
+        *out = r.width();
+    else if (key == "height")
+        *out = r.height();
+    else
+        return false;
     return true;
 }
 
 bool read_only_double(const ppm::Renderer &r, const std::string &key, double *out) {
-    if (key == "last_eye_pass_seconds") *out = r.last_eye_seconds();
-    else if (key == "last_photon_pass_seconds") *out = r.last_photon_seconds();
-    else if (key == "last_search_build_seconds") *out = r.last_search_build_seconds();
-    else return false;
+    if (key == "last_eye_pass_seconds")
+        *out = r.last_eye_seconds();
+    else if (key == "last_photon_pass_seconds")
+        *out = r.last_photon_seconds();
+    else if (key == "last_search_build_seconds")
+        *out = r.last_search_build_seconds();
+    else
+        return false;
     return true;
 }
 
@@ -78,7 +88,8 @@ void refuse_read_only(const ppm::Renderer &r, const char *key) {
 extern "C" {
 
 ppm_status ppm_scene_add_diffuse_material(ppm_scene scene, const double reflectance[3], uint32_t *out_id) {
-    return add_material(scene, out_id, [&] { return ppm::Bsdf::diffuse(read_reflectance(reflectance, "reflectance")); });
+    return add_material(scene, out_id,
+                        [&] { return ppm::Bsdf::diffuse(read_reflectance(reflectance, "reflectance")); });
 }
 
 ppm_status ppm_scene_add_mirror_material(ppm_scene scene, const double specular_reflectance[3], uint32_t *out_id) {
@@ -113,7 +124,8 @@ ppm_status ppm_scene_set_material_texture(ppm_scene scene, uint32_t material_id,
             mapping.scale_v = scale[1];
         }
         if (offset) {
-            if (!std::isfinite(offset[0]) || !std::isfinite(offset[1])) invalid_argument("texture offset must be finite");
+            if (!std::isfinite(offset[0]) || !std::isfinite(offset[1]))
+                invalid_argument("texture offset must be finite");
             mapping.offset_u = offset[0];
             mapping.offset_v = offset[1];
         }
@@ -148,8 +160,8 @@ ppm_status ppm_scene_add_spot_light(ppm_scene scene, const double position[3], c
                                     uint32_t *out_light_id) {
     return scene_call(scene, [&](ppm::Scene &s) {
         const ppm::Vec3 p = finite_point(position, "position"), t = finite_point(target, "target");
-        write_id(out_light_id, s.add_light(ppm::Light::spot(p, t, read_emission(intensity, "intensity"), cutoff_angle,
-                                                            beam_width)));
+        write_id(out_light_id,
+                 s.add_light(ppm::Light::spot(p, t, read_emission(intensity, "intensity"), cutoff_angle, beam_width)));
     });
 }
 
@@ -220,7 +232,8 @@ ppm_status ppm_renderer_get_int(ppm_renderer renderer, const char *key, int64_t 
         require(out_value, "out_value");
         double seconds = 0;
         if (read_only_double(r, key, &seconds))
-            invalid_argument(std::string("render value '") + key + "' is a double, not an integer: read it as a double");
+            invalid_argument(std::string("render value '") + key +
+                             "' is a double, not an integer: read it as a double");
         if (!read_only_int(r, key, out_value)) *out_value = r.settings().get_int(key);
     });
 }
@@ -230,8 +243,10 @@ ppm_status ppm_renderer_get_double(ppm_renderer renderer, const char *key, doubl
         require_key(key);
         require(out_value, "out_value");
         int64_t count = 0;
-        if (read_only_int(r, key, &count)) *out_value = static_cast<double>(count);
-        else if (!read_only_double(r, key, out_value)) *out_value = r.settings().get_double(key);
+        if (read_only_int(r, key, &count))
+            *out_value = static_cast<double>(count);
+        else if (!read_only_double(r, key, out_value))
+            *out_value = r.settings().get_double(key);
     });
 }
 

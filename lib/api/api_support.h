@@ -60,8 +60,8 @@ inline ppm::Vec3 finite_point(const double *p, const char *name) {
     if (!ppm::is_finite(v)) ppm::invalid_argument(std::string(name) + " has a NaN or infinite coordinate");
     if (!ppm::within(v.x, ppm::kCoordinateLimit) || !ppm::within(v.y, ppm::kCoordinateLimit) ||
         !ppm::within(v.z, ppm::kCoordinateLimit))
-        ppm::invalid_argument(std::string(name) + " has a coordinate beyond +-" + ppm::format_number(ppm::kCoordinateLimit) +
-                              " (the limit of scene coordinates)");
+        ppm::invalid_argument(std::string(name) + " has a coordinate beyond +-" +
+                              ppm::format_number(ppm::kCoordinateLimit) + " (the limit of scene coordinates)");
     return v;
 }
 

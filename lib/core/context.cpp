@@ -10,9 +10,7 @@ namespace {
 // can put it in the exception.
 thread_local std::string last_embree_message;
 
-void on_embree_error(void *, RTCError, const char *message) {
-    last_embree_message = message ? message : "";
-}
+void on_embree_error(void *, RTCError, const char *message) { last_embree_message = message ? message : ""; }
 
 const char *embree_error_name(RTCError error) {
     switch (error) {
@@ -49,8 +47,7 @@ void Context::set_threads(int threads) {
 void Context::check_embree(const char *what) const {
     const RTCError error = rtcGetDeviceError(device_);
     if (error == RTC_ERROR_NONE) return;
-    const ppm_status status = error == RTC_ERROR_OUT_OF_MEMORY ? PPM_ERROR_OUT_OF_MEMORY
-                                                               : PPM_ERROR_INTERNAL;
+    const ppm_status status = error == RTC_ERROR_OUT_OF_MEMORY ? PPM_ERROR_OUT_OF_MEMORY : PPM_ERROR_INTERNAL;
     fail(status, std::string(what) + ": Embree " + embree_error_name(error) +
                      (last_embree_message.empty() ? "" : ": " + last_embree_message));
 }

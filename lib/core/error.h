@@ -13,17 +13,14 @@ namespace ppm {
 
 class Error : public std::runtime_error {
 public:
-    Error(ppm_status status, const std::string &message)
-        : std::runtime_error(message), status_(status) {}
+    Error(ppm_status status, const std::string &message) : std::runtime_error(message), status_(status) {}
     ppm_status status() const { return status_; }
 
 private:
     ppm_status status_;
 };
 
-[[noreturn]] inline void fail(ppm_status status, const std::string &message) {
-    throw Error(status, message);
-}
+[[noreturn]] inline void fail(ppm_status status, const std::string &message) { throw Error(status, message); }
 [[noreturn]] inline void invalid_argument(const std::string &message) {
     throw Error(PPM_ERROR_INVALID_ARGUMENT, message);
 }

@@ -23,8 +23,7 @@ constexpr int kNormalAttempts = 4;
 inline Vec3 tensor_sum(const BezierPatch &patch, const double bu[4], const double bv[4]) {
     Vec3 sum;
     for (int i = 0; i < 4; ++i) {
-        Vec3 row = patch.at(i, 0) * bu[0] + patch.at(i, 1) * bu[1] + patch.at(i, 2) * bu[2] +
-                   patch.at(i, 3) * bu[3];
+        Vec3 row = patch.at(i, 0) * bu[0] + patch.at(i, 1) * bu[1] + patch.at(i, 2) * bu[2] + patch.at(i, 3) * bu[3];
         sum += row * bv[i];
     }
     return sum;
@@ -84,8 +83,7 @@ Vec3 geometric_normal(const BezierPatch &patch, double u, double v, double scale
     return geometric_normal(patch, u, v, scale, evaluate_derivatives(patch, u, v));
 }
 
-Vec3 geometric_normal(const BezierPatch &patch, double u, double v, double scale,
-                      const SurfaceDerivatives &at_uv) {
+Vec3 geometric_normal(const BezierPatch &patch, double u, double v, double scale, const SurfaceDerivatives &at_uv) {
     if (!(scale > 0)) return {};
     const double vanish = kVanishingShare * scale;
     // Walk towards the patch centre if the point itself is degenerate in both directions
@@ -108,8 +106,7 @@ Vec3 geometric_normal(const BezierPatch &patch, double u, double v, double scale
 }
 
 void split_u(const BezierPatch &patch, double t, BezierPatch &left, BezierPatch &right) {
-    for (int i = 0; i < 4; ++i)
-        de_casteljau_split(&patch.p[i * 4], 1, t, &left.p[i * 4], &right.p[i * 4]);
+    for (int i = 0; i < 4; ++i) de_casteljau_split(&patch.p[i * 4], 1, t, &left.p[i * 4], &right.p[i * 4]);
 }
 
 void split_v(const BezierPatch &patch, double t, BezierPatch &left, BezierPatch &right) {
@@ -120,10 +117,22 @@ BezierPatch sub_patch(const BezierPatch &patch, double u0, double u1, double v0,
     // Cut at u1 first, then at u0 inside [0, u1] (relative position u0 / u1). De Casteljau
     // extrapolates just as well, so the interval may reach beyond [0, 1].
     BezierPatch a, b, c, d;
-    if (u1 != 1.0) split_u(patch, u1, a, b); else a = patch;
-    if (u0 != 0.0) split_u(a, u0 / u1, b, c); else c = a;
-    if (v1 != 1.0) split_v(c, v1, a, b); else a = c;
-    if (v0 != 0.0) split_v(a, v0 / v1, b, d); else d = a;
+    if (u1 != 1.0)
+        split_u(patch, u1, a, b);
+    else
+        a = patch;
+    if (u0 != 0.0)
+        split_u(a, u0 / u1, b, c);
+    else
+        c = a;
+    if (v1 != 1.0)
+        split_v(c, v1, a, b);
+    else
+        a = c;
+    if (v0 != 0.0)
+        split_v(a, v0 / v1, b, d);
+    else
+        d = a;
     return d;
 }
 
@@ -143,8 +152,8 @@ IntervalMatrix IntervalMatrix::of(double a, double b) {
     return m;
 }
 
-void sub_patch_soa(const BezierPatch &patch, const IntervalMatrix &along_u,
-                   const IntervalMatrix &along_v, double x[16], double y[16], double z[16]) {
+void sub_patch_soa(const BezierPatch &patch, const IntervalMatrix &along_u, const IntervalMatrix &along_v, double x[16],
+                   double y[16], double z[16]) {
     // Rows first: r[i][j] = sum_l u.w[j][l] P[i][l]; then columns: sum_k v.w[i][k] r[k][j].
 #if defined(__AVX2__) && defined(__FMA__)
     // A row of r or of the result is one register over j; this runs for every ray that gets

@@ -39,14 +39,19 @@ inline void bernstein3_second(double t, double d[4]) {
 // One De Casteljau step on four values a[0], a[stride], a[2*stride], a[3*stride]: the curve
 // on [0, t] goes to `left`, the one on [t, 1] to `right` (same stride). Works in place for
 // the output arrays but not when `left` or `right` alias `a`.
-template <class T>
-inline void de_casteljau_split(const T *a, int stride, double t, T *left, T *right) {
+template <class T> inline void de_casteljau_split(const T *a, int stride, double t, T *left, T *right) {
     const T p0 = a[0], p1 = a[stride], p2 = a[2 * stride], p3 = a[3 * stride];
     const T q0 = p0 + (p1 - p0) * t, q1 = p1 + (p2 - p1) * t, q2 = p2 + (p3 - p2) * t;
     const T r0 = q0 + (q1 - q0) * t, r1 = q1 + (q2 - q1) * t;
     const T s0 = r0 + (r1 - r0) * t;
-    left[0] = p0; left[stride] = q0; left[2 * stride] = r0; left[3 * stride] = s0;
-    right[0] = s0; right[stride] = r1; right[2 * stride] = q2; right[3 * stride] = p3;
+    left[0] = p0;
+    left[stride] = q0;
+    left[2 * stride] = r0;
+    left[3 * stride] = s0;
+    right[0] = s0;
+    right[stride] = r1;
+    right[2 * stride] = q2;
+    right[3 * stride] = p3;
 }
 
 // Position and first derivatives at (u, v).
@@ -71,8 +76,7 @@ Vec3 geometric_normal(const BezierPatch &patch, double u, double v);
 // The same with the patch's size (diagonal of its control points) known.
 Vec3 geometric_normal(const BezierPatch &patch, double u, double v, double scale);
 // The same reusing evaluate_derivatives(patch, u, v).
-Vec3 geometric_normal(const BezierPatch &patch, double u, double v, double scale,
-                      const SurfaceDerivatives &at_uv);
+Vec3 geometric_normal(const BezierPatch &patch, double u, double v, double scale, const SurfaceDerivatives &at_uv);
 
 // Splits at u = t (left: u in [0, t]) or at v = t (left: v in [0, t]).
 void split_u(const BezierPatch &patch, double t, BezierPatch &left, BezierPatch &right);
@@ -91,8 +95,8 @@ struct IntervalMatrix {
 
 // sub_patch through precomputed interval matrices (rows: v, columns: u), written as a
 // structure of arrays p[i * 4 + j]: the same patch up to rounding, at a third of the cost.
-void sub_patch_soa(const BezierPatch &patch, const IntervalMatrix &along_u,
-                   const IntervalMatrix &along_v, double x[16], double y[16], double z[16]);
+void sub_patch_soa(const BezierPatch &patch, const IntervalMatrix &along_u, const IntervalMatrix &along_v, double x[16],
+                   double y[16], double z[16]);
 
 // Box of the control points, which contains the surface (convex hull property).
 Box3 control_bounds(const BezierPatch &patch);

@@ -75,7 +75,8 @@ bool leaves_for_good(const Vec3 &n, double slope, const Vec3 &offset, double off
     // round by a few ulps of |v| |n|.
     const double n_1 = std::fabs(n.x) + std::fabs(n.y) + std::fabs(n.z);
     auto steep = [&](const Vec3 &v, double rise, double error) {
-        const double slack = error * n_1 + kProductUlps * DBL_EPSILON * n_1 * (std::fabs(v.x) + std::fabs(v.y) + std::fabs(v.z));
+        const double slack =
+            error * n_1 + kProductUlps * DBL_EPSILON * n_1 * (std::fabs(v.x) + std::fabs(v.y) + std::fabs(v.z));
         return side * rise - slack > slope * (length(cross(v, n)) + slack);
     };
     return steep(offset, rise_offset, offset_error) && steep(dir, rise_dir, 0.0);

@@ -9,8 +9,7 @@ namespace {
 // Double-precision ray / triangle (Moller-Trumbore). Embree already found the triangle in
 // single precision, so a double "miss" here is an edge case of rounding: keep the hit and
 // clamp the barycentrics instead of losing it.
-void exact_triangle_hit(const MeshData &m, unsigned prim, const RayQuery &query, double &t,
-                        double &u, double &v) {
+void exact_triangle_hit(const MeshData &m, unsigned prim, const RayQuery &query, double &t, double &u, double &v) {
     const Vec3 &p0 = m.positions[m.indices[3 * prim]];
     const Vec3 &p1 = m.positions[m.indices[3 * prim + 1]];
     const Vec3 &p2 = m.positions[m.indices[3 * prim + 2]];
@@ -68,11 +67,9 @@ RTCGeometry MeshGeometry::create_embree(RTCDevice device, const EmbreeFrame &fra
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     if (!geometry) return nullptr;
     float *vertices = static_cast<float *>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-        world_.positions.size()));
+        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), world_.positions.size()));
     unsigned *indices = static_cast<unsigned *>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-        world_.indices.size() / 3));
+        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), world_.indices.size() / 3));
     if (!vertices || !indices) {
         rtcReleaseGeometry(geometry);
         return nullptr;
@@ -93,8 +90,7 @@ RTCGeometry MeshGeometry::create_embree(RTCDevice device, const EmbreeFrame &fra
 
 void MeshGeometry::describe_hit(const RayQuery &query, double tolerance, ppm_hit &hit) const {
     const unsigned prim = query.hit.prim_id;
-    const uint32_t i0 = world_.indices[3 * prim], i1 = world_.indices[3 * prim + 1],
-                   i2 = world_.indices[3 * prim + 2];
+    const uint32_t i0 = world_.indices[3 * prim], i1 = world_.indices[3 * prim + 1], i2 = world_.indices[3 * prim + 2];
     const double u = query.hit.u, v = query.hit.v, w = 1.0 - u - v;
     const Vec3 &p0 = world_.positions[i0], &p1 = world_.positions[i1], &p2 = world_.positions[i2];
     const Vec3 p = p0 * w + p1 * u + p2 * v;

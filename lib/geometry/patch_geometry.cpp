@@ -68,8 +68,8 @@ bool segment_misses(const PatchGeometry::SubPatch &sub, RayQuery &query) {
     const Box3 box = box_of(sub);
     // The sum of the box's extents bounds its diagonal (no square root needed for a pad).
     const Vec3 extent = box.upper - box.lower;
-    const double pad = query.tolerance + kClipRounding * (extent.x + extent.y + extent.z + max_abs_component(box.lower) +
-                                                  max_abs_component(box.upper));
+    const double pad = query.tolerance + kClipRounding * (extent.x + extent.y + extent.z +
+                                                          max_abs_component(box.lower) + max_abs_component(box.upper));
     const Vec3 &inv_dir = query.inv_dir();
     double t0 = query.tnear, t1 = query.hit.t;
     for (int axis = 0; axis < 3; ++axis) {
@@ -91,8 +91,7 @@ bool segment_misses(const PatchGeometry::SubPatch &sub, RayQuery &query) {
     const Vec3 normal{sub.normal[0], sub.normal[1], sub.normal[2]};
     const double d0 = dot(normal, query.org + query.dir * t0);
     const double d1 = dot(normal, query.org + query.dir * t1);
-    return (d0 < sub.slab_lo - pad && d1 < sub.slab_lo - pad) ||
-           (d0 > sub.slab_hi + pad && d1 > sub.slab_hi + pad);
+    return (d0 < sub.slab_lo - pad && d1 < sub.slab_lo - pad) || (d0 > sub.slab_hi + pad && d1 > sub.slab_hi + pad);
 }
 
 Vec3 stored_normal(const PatchGeometry::SubPatch &sub) { return {sub.normal[0], sub.normal[1], sub.normal[2]}; }
@@ -101,8 +100,8 @@ Vec3 stored_normal(const PatchGeometry::SubPatch &sub) { return {sub.normal[0], 
 // cannot meet it again: chord_slope.h. The hit point the ray was spawned from is the
 // patch evaluated at the hit's (u, v), to rounding of kHitPointUlps of the patch's magnitude
 // (as PatchGeometry::describe_hit states); twice that is allowed for.
-bool leaves_own_sub_patch(const PatchGeometry::Data &data, const PatchGeometry::SubPatch &sub,
-                          unsigned patch_index, const Domain &d, const RayQuery &query) {
+bool leaves_own_sub_patch(const PatchGeometry::Data &data, const PatchGeometry::SubPatch &sub, unsigned patch_index,
+                          const Domain &d, const RayQuery &query) {
     const RayOrigin &from = query.origin;
     if (from.prim_id != patch_index || !(query.tnear >= 0)) return false;
     if (!(from.u >= d.u0 && from.u <= d.u1 && from.v >= d.v0 && from.v <= d.v1)) return false;
@@ -125,8 +124,8 @@ bool test_sub_patch(const PatchGeometry::Data &data, unsigned prim, RayQuery &qu
     const unsigned patch_index = at.patch;
     const Domain &d = at.domain;
     ControlGrid grid;
-    sub_patch_soa((*data.patches)[patch_index], data.intervals[at.column], data.intervals[at.row], grid.x,
-                  grid.y, grid.z);
+    sub_patch_soa((*data.patches)[patch_index], data.intervals[at.column], data.intervals[at.row], grid.x, grid.y,
+                  grid.z);
     grid.derivative_bound = sub.derivative_bound;
     PatchRootQuery patch_query;
     patch_query.tnear = query.tnear;
@@ -238,8 +237,7 @@ void PatchGeometry::split_patches(int per_edge) {
 RTCGeometry PatchGeometry::create_embree(RTCDevice device, const EmbreeFrame &frame) {
     split_patches(frame.patch_presplit);
     data_.frame = frame;
-    return new_user_geometry<Data, test_sub_patch>(device, data_, data_.sub_patches.size(),
-                                                   sub_patch_bounds);
+    return new_user_geometry<Data, test_sub_patch>(device, data_, data_.sub_patches.size(), sub_patch_bounds);
 }
 
 void PatchGeometry::describe_hit(const RayQuery &query, double tolerance, ppm_hit &hit) const {

@@ -43,8 +43,8 @@ public:
     };
     struct Data {
         const std::vector<BezierPatch> *patches = nullptr; // world space
-        const std::vector<double> *magnitudes = nullptr;    // per patch: largest |coordinate|
-        std::vector<SubPatch> sub_patches; // per_edge x per_edge per patch, row by row
+        const std::vector<double> *magnitudes = nullptr;   // per patch: largest |coordinate|
+        std::vector<SubPatch> sub_patches;                 // per_edge x per_edge per patch, row by row
         int per_edge = 1;
         std::vector<IntervalMatrix> intervals; // cutting [0, 1] into per_edge pieces
         std::vector<double> cuts;              // per_edge + 1 cuts of [0, 1], the last exactly 1
@@ -59,8 +59,8 @@ private:
     std::vector<BezierPatch> source_;
     std::vector<double> uv_rects_;
     std::vector<BezierPatch> world_; // empty under the identity transform: source_ is the world
-    std::vector<double> scale_;     // per world patch: diagonal of its control points
-    std::vector<double> magnitude_; // per world patch: largest absolute coordinate
+    std::vector<double> scale_;      // per world patch: diagonal of its control points
+    std::vector<double> magnitude_;  // per world patch: largest absolute coordinate
     Data data_;
 };
 

@@ -100,8 +100,7 @@ double ControlGrid::bound_derivatives() const {
     for (int i = 0; i < 4; ++i)
         for (int j = 0; j < 3; ++j) {
             const int k = i * 4 + j, across = j * 4 + i; // (i, j) -> (i, j + 1); (j, i) -> (j + 1, i)
-            du = std::max(du, std::fabs(x[k + 1] - x[k]) + std::fabs(y[k + 1] - y[k]) +
-                                  std::fabs(z[k + 1] - z[k]));
+            du = std::max(du, std::fabs(x[k + 1] - x[k]) + std::fabs(y[k + 1] - y[k]) + std::fabs(z[k + 1] - z[k]));
             dv = std::max(dv, std::fabs(x[across + 4] - x[across]) + std::fabs(y[across + 4] - y[across]) +
                                   std::fabs(z[across + 4] - z[across]));
         }
@@ -208,10 +207,14 @@ struct Jet {
         const __m128d w = _mm_set1_pd(bb[i]), dw = _mm_set1_pd(db[i]);
         const __m128d x0 = _mm_loadu_pd(p.x + 4 * i), x1 = _mm_loadu_pd(p.x + 4 * i + 2);
         const __m128d y0 = _mm_loadu_pd(p.y + 4 * i), y1 = _mm_loadu_pd(p.y + 4 * i + 2);
-        cx0 = _mm_add_pd(cx0, _mm_mul_pd(w, x0)); cx1 = _mm_add_pd(cx1, _mm_mul_pd(w, x1));
-        cy0 = _mm_add_pd(cy0, _mm_mul_pd(w, y0)); cy1 = _mm_add_pd(cy1, _mm_mul_pd(w, y1));
-        bx0 = _mm_add_pd(bx0, _mm_mul_pd(dw, x0)); bx1 = _mm_add_pd(bx1, _mm_mul_pd(dw, x1));
-        by0 = _mm_add_pd(by0, _mm_mul_pd(dw, y0)); by1 = _mm_add_pd(by1, _mm_mul_pd(dw, y1));
+        cx0 = _mm_add_pd(cx0, _mm_mul_pd(w, x0));
+        cx1 = _mm_add_pd(cx1, _mm_mul_pd(w, x1));
+        cy0 = _mm_add_pd(cy0, _mm_mul_pd(w, y0));
+        cy1 = _mm_add_pd(cy1, _mm_mul_pd(w, y1));
+        bx0 = _mm_add_pd(bx0, _mm_mul_pd(dw, x0));
+        bx1 = _mm_add_pd(bx1, _mm_mul_pd(dw, x1));
+        by0 = _mm_add_pd(by0, _mm_mul_pd(dw, y0));
+        by1 = _mm_add_pd(by1, _mm_mul_pd(dw, y1));
     }
     const __m128d ba0 = _mm_loadu_pd(ba), ba1 = _mm_loadu_pd(ba + 2);
     const __m128d da0 = _mm_loadu_pd(da), da1 = _mm_loadu_pd(da + 2);
@@ -228,12 +231,17 @@ struct Jet {
         double rx = 0, ry = 0, rxa = 0, rya = 0;
         for (int j = 0; j < 4; ++j) {
             const int k = i * 4 + j;
-            rx += ba[j] * p.x[k]; ry += ba[j] * p.y[k];
-            rxa += da[j] * p.x[k]; rya += da[j] * p.y[k];
+            rx += ba[j] * p.x[k];
+            ry += ba[j] * p.y[k];
+            rxa += da[j] * p.x[k];
+            rya += da[j] * p.y[k];
         }
-        r.x += bb[i] * rx; r.y += bb[i] * ry;
-        r.xa += bb[i] * rxa; r.ya += bb[i] * rya;
-        r.xb += db[i] * rx; r.yb += db[i] * ry;
+        r.x += bb[i] * rx;
+        r.y += bb[i] * ry;
+        r.xa += bb[i] * rxa;
+        r.ya += bb[i] * rya;
+        r.xb += db[i] * rx;
+        r.yb += db[i] * ry;
     }
     return r;
 #endif
@@ -245,8 +253,7 @@ double evaluate_z(const Projected &p, double a, double b) {
     bernstein3(b, bb);
     double z = 0;
     for (int i = 0; i < 4; ++i)
-        z += bb[i] * (ba[0] * p.z[i * 4] + ba[1] * p.z[i * 4 + 1] + ba[2] * p.z[i * 4 + 2] +
-                      ba[3] * p.z[i * 4 + 3]);
+        z += bb[i] * (ba[0] * p.z[i * 4] + ba[1] * p.z[i * 4 + 1] + ba[2] * p.z[i * 4 + 2] + ba[3] * p.z[i * 4 + 3]);
     return z;
 }
 
@@ -272,11 +279,11 @@ void net_lengths(const Projected &p, double &along_a, double &along_b) {
     along_a = along_b = 0;
     for (int i = 0; i < 4; ++i) {
         const int k0 = i * 4, k3 = i * 4 + 3;
-        along_a = std::max(along_a, std::fabs(p.x[k3] - p.x[k0]) + std::fabs(p.y[k3] - p.y[k0]) +
-                                        std::fabs(p.z[k3] - p.z[k0]));
+        along_a = std::max(along_a,
+                           std::fabs(p.x[k3] - p.x[k0]) + std::fabs(p.y[k3] - p.y[k0]) + std::fabs(p.z[k3] - p.z[k0]));
         const int c0 = i, c3 = 12 + i;
-        along_b = std::max(along_b, std::fabs(p.x[c3] - p.x[c0]) + std::fabs(p.y[c3] - p.y[c0]) +
-                                        std::fabs(p.z[c3] - p.z[c0]));
+        along_b = std::max(along_b,
+                           std::fabs(p.x[c3] - p.x[c0]) + std::fabs(p.y[c3] - p.y[c0]) + std::fabs(p.z[c3] - p.z[c0]));
     }
 }
 
@@ -291,16 +298,15 @@ enum class Verdict {
 
 struct Krawczyk {
     Verdict verdict = Verdict::undecided;
-    bool singular = false; // J(c) is (numerically) singular: no proof is possible here
-    double start_a = 0.5, start_b = 0.5; // c - Y F(c): a Newton step from the centre
+    bool singular = false;                     // J(c) is (numerically) singular: no proof is possible here
+    double start_a = 0.5, start_b = 0.5;       // c - Y F(c): a Newton step from the centre
     double y00 = 0, y01 = 0, y10 = 0, y11 = 0; // Y = J(c)^-1 in the region's coordinates
-    double contraction = 1;              // |I - Y J(X)| in the infinity norm
+    double contraction = 1;                    // |I - Y J(X)| in the infinity norm
 
     // For a root x* and a point x both in X: F(x) = J' (x - x*) with J' in J(X), so
     // |x - x*| <= |Y F(x)| / (1 - contraction) (in the region's coordinates).
     double distance_to_root(double fx, double fy) const {
-        return std::max(std::fabs(y00 * fx + y01 * fy), std::fabs(y10 * fx + y11 * fy)) /
-               (1 - contraction);
+        return std::max(std::fabs(y00 * fx + y01 * fy), std::fabs(y10 * fx + y11 * fy)) / (1 - contraction);
     }
 };
 
@@ -330,10 +336,10 @@ Krawczyk krawczyk_test(const Projected &p) {
         const double lo = identity - (u.hi + v.hi), hi = identity - (u.lo + v.lo);
         return std::max(std::fabs(lo), std::fabs(hi));
     };
-    const double r0 = 0.5 * (magnitude(1.0, scale(y00, xa), scale(y01, ya)) +
-                             magnitude(0.0, scale(y00, xb), scale(y01, yb)));
-    const double r1 = 0.5 * (magnitude(0.0, scale(y10, xa), scale(y11, ya)) +
-                             magnitude(1.0, scale(y10, xb), scale(y11, yb)));
+    const double r0 =
+        0.5 * (magnitude(1.0, scale(y00, xa), scale(y01, ya)) + magnitude(0.0, scale(y00, xb), scale(y01, yb)));
+    const double r1 =
+        0.5 * (magnitude(0.0, scale(y10, xa), scale(y11, ya)) + magnitude(1.0, scale(y10, xb), scale(y11, yb)));
     if (!std::isfinite(r0 + r1 + step_a + step_b)) return k;
 
     // Inflate by a rounding margin: the interval arithmetic above is not outward rounded.
@@ -342,7 +348,10 @@ Krawczyk krawczyk_test(const Projected &p) {
     const double k1lo = 0.5 - step_b - r1 - margin, k1hi = 0.5 - step_b + r1 + margin;
     k.start_a = 0.5 - step_a;
     k.start_b = 0.5 - step_b;
-    k.y00 = y00; k.y01 = y01; k.y10 = y10; k.y11 = y11;
+    k.y00 = y00;
+    k.y01 = y01;
+    k.y10 = y10;
+    k.y11 = y11;
     k.contraction = 2 * (std::max(r0, r1) + margin);
     if (k0hi < 0.0 || k0lo > 1.0 || k1hi < 0.0 || k1lo > 1.0)
         k.verdict = Verdict::no_root;
@@ -364,8 +373,8 @@ struct Solver {
     // root inside [a0, a1] x [b0, b1] (plus a rounding margin). Returns false on a singular
     // Jacobian, NaN, leaving the region's neighbourhood, or no convergence. With the region's
     // Krawczyk data it stops as soon as the proven distance to the root is small enough.
-    bool newton(double a, double b, const Region &r, const Krawczyk *proof, double &root_a,
-                double &root_b, double &distance) const {
+    bool newton(double a, double b, const Region &r, const Krawczyk *proof, double &root_a, double &root_b,
+                double &distance) const {
         const double wa = r.a1 - r.a0, wb = r.b1 - r.b0;
         for (int iteration = 0; iteration < kNewtonIterations; ++iteration) {
             const Jet j = evaluate_jet(top, a, b);
@@ -384,8 +393,7 @@ struct Solver {
             if (converged) {
                 const double margin_a = kRegionShare * wa + kParameterRounding;
                 const double margin_b = kRegionShare * wb + kParameterRounding;
-                if (!(a >= r.a0 - margin_a && a <= r.a1 + margin_a && b >= r.b0 - margin_b &&
-                      b <= r.b1 + margin_b))
+                if (!(a >= r.a0 - margin_a && a <= r.a1 + margin_a && b >= r.b0 - margin_b && b <= r.b1 + margin_b))
                     return false; // a root of another region: it is found there
                 root_a = std::clamp(a, 0.0, 1.0);
                 root_b = std::clamp(b, 0.0, 1.0);
@@ -393,8 +401,8 @@ struct Solver {
                 return true;
             }
             // Newton may overshoot a little on its way; far outside the region it is lost.
-            if (!(a >= r.a0 - kNewtonWander * wa && a <= r.a1 + kNewtonWander * wa &&
-                  b >= r.b0 - kNewtonWander * wb && b <= r.b1 + kNewtonWander * wb))
+            if (!(a >= r.a0 - kNewtonWander * wa && a <= r.a1 + kNewtonWander * wa && b >= r.b0 - kNewtonWander * wb &&
+                  b <= r.b1 + kNewtonWander * wb))
                 return false; // also catches NaN
         }
         return false;
@@ -403,8 +411,7 @@ struct Solver {
 
 } // namespace
 
-bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchRootQuery &query,
-                     PatchRoot &root) {
+bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchRootQuery &query, PatchRoot &root) {
     RegionStack stack;
     // The whole patch stays here, outside the stack's pool, for Newton (which evaluates the
     // whole patch) to read after the search has split it; the stack names it kWholePatch.
@@ -424,8 +431,8 @@ bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchR
     // The frame is a rotation: the largest projected coordinate is within sqrt(3) of the
     // largest coordinate of (control point - origin).
     const Bounds2 top_box = bounds_of(top);
-    const double magnitude = kSqrt3 *
-        std::max({-top_box.xmin, top_box.xmax, -top_box.ymin, top_box.ymax, -top_box.zmin, top_box.zmax});
+    const double magnitude =
+        kSqrt3 * std::max({-top_box.xmin, top_box.xmax, -top_box.ymin, top_box.ymax, -top_box.zmin, top_box.zmax});
 
     // Projection and De Casteljau each add a few ulps of the coordinates' magnitude.
     const double noise = kNoiseUlps * DBL_EPSILON * magnitude;
@@ -510,12 +517,20 @@ bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchR
         Region &low = stack[low_slot], &high = stack[high_slot]; // the halves below / above the cut
         if (cut_a) {
             split_a(r.cp, 0.5, low.cp, high.cp);
-            low.a0 = r.a0; low.a1 = ca; high.a0 = ca; high.a1 = r.a1;
-            low.b0 = high.b0 = r.b0; low.b1 = high.b1 = r.b1;
+            low.a0 = r.a0;
+            low.a1 = ca;
+            high.a0 = ca;
+            high.a1 = r.a1;
+            low.b0 = high.b0 = r.b0;
+            low.b1 = high.b1 = r.b1;
         } else {
             split_b(r.cp, 0.5, low.cp, high.cp);
-            low.b0 = r.b0; low.b1 = cb; high.b0 = cb; high.b1 = r.b1;
-            low.a0 = high.a0 = r.a0; low.a1 = high.a1 = r.a1;
+            low.b0 = r.b0;
+            low.b1 = cb;
+            high.b0 = cb;
+            high.b1 = r.b1;
+            low.a0 = high.a0 = r.a0;
+            low.a1 = high.a1 = r.a1;
         }
         low.contraction_hint = high.contraction_hint = child_hint;
         const double low_z = *std::min_element(low.cp.z, low.cp.z + 16);

@@ -38,10 +38,10 @@ struct ControlGrid {
 };
 
 struct PatchRootQuery {
-    double tnear = 0;          // accepted ray parameters: [tnear, tfar]
+    double tnear = 0; // accepted ray parameters: [tnear, tfar]
     double tfar = INFINITY;
-    double tolerance = 1e-9;   // absolute distance below which a region counts as a point
-    bool any_hit = false;      // stop at the first root found (occlusion queries)
+    double tolerance = 1e-9; // absolute distance below which a region counts as a point
+    bool any_hit = false;    // stop at the first root found (occlusion queries)
 };
 
 struct PatchRoot {
@@ -51,10 +51,9 @@ struct PatchRoot {
 
 // Searches the patch for the root with the smallest t in [tnear, tfar] (any root when
 // any_hit). Returns true and fills `root` when one exists.
-bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchRootQuery &query,
-                     PatchRoot &root);
-inline bool intersect_patch(const BezierPatch &patch, const RayFrame &ray,
-                            const PatchRootQuery &query, PatchRoot &root) {
+bool intersect_patch(const ControlGrid &patch, const RayFrame &ray, const PatchRootQuery &query, PatchRoot &root);
+inline bool intersect_patch(const BezierPatch &patch, const RayFrame &ray, const PatchRootQuery &query,
+                            PatchRoot &root) {
     return intersect_patch(ControlGrid::from(patch), ray, query, root);
 }
 

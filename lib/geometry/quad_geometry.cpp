@@ -46,8 +46,7 @@ Box3 QuadGeometry::prepare(const Affine &transform) {
     q.vv = dot(q.edge_v, q.edge_v);
     q.det = q.uu * q.vv - q.uv * q.uv;
     q.box = Box3{};
-    for (const Vec3 &corner : {q.origin, q.origin + q.edge_u, q.origin + q.edge_v,
-                               q.origin + q.edge_u + q.edge_v})
+    for (const Vec3 &corner : {q.origin, q.origin + q.edge_u, q.origin + q.edge_v, q.origin + q.edge_u + q.edge_v})
         q.box.extend(corner);
     q.unit_normal = normalize(q.normal);
     q.rounding = 32 * DBL_EPSILON * std::max(max_abs_component(q.box.lower), max_abs_component(q.box.upper));

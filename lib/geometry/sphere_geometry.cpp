@@ -85,17 +85,14 @@ void sphere_bounds(const RTCBoundsFunctionArguments *args) {
 
 } // namespace
 
-SphereGeometry::SphereGeometry(const Vec3 &center, double radius)
-    : source_center_(center), source_radius_(radius) {}
+SphereGeometry::SphereGeometry(const Vec3 &center, double radius) : source_center_(center), source_radius_(radius) {}
 
 void SphereGeometry::check_transform(const Affine &transform) const {
-    const Vec3 x = transform.vector({1, 0, 0}), y = transform.vector({0, 1, 0}),
-               z = transform.vector({0, 0, 1});
+    const Vec3 x = transform.vector({1, 0, 0}), y = transform.vector({0, 1, 0}), z = transform.vector({0, 0, 1});
     const double lx = length(x), ly = length(y), lz = length(z);
     const double tolerance = 1e-9 * std::max({lx, ly, lz});
-    if (std::fabs(lx - ly) > tolerance || std::fabs(lx - lz) > tolerance ||
-        std::fabs(dot(x, y)) > tolerance * lx || std::fabs(dot(y, z)) > tolerance * ly ||
-        std::fabs(dot(x, z)) > tolerance * lx)
+    if (std::fabs(lx - ly) > tolerance || std::fabs(lx - lz) > tolerance || std::fabs(dot(x, y)) > tolerance * lx ||
+        std::fabs(dot(y, z)) > tolerance * ly || std::fabs(dot(x, z)) > tolerance * lx)
         invalid_argument("a sphere takes only rotations, translations and uniform scaling");
 }
 
@@ -122,7 +119,7 @@ RTCGeometry SphereGeometry::create_embree(RTCDevice device, const EmbreeFrame &f
 void SphereGeometry::describe_hit(const RayQuery &query, double tolerance, ppm_hit &hit) const {
     const Vec3 along = query.org + query.dir * query.hit.t - data_.center;
     const Vec3 n = normalize(along * data_.inv_radius); // nearly unit: no square root (vec3.h)
-    const Vec3 p = data_.center + n * data_.radius; // back onto the sphere
+    const Vec3 p = data_.center + n * data_.radius;     // back onto the sphere
     p.store(hit.p);
     n.store(hit.ng);
     n.store(hit.ns);

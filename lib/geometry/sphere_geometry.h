@@ -20,7 +20,7 @@ public:
     struct Data {
         Vec3 center;
         double radius, inv_radius;
-        Vec3 axis[3]; // the object's x, y, z axes in world space, for (u, v)
+        Vec3 axis[3];        // the object's x, y, z axes in world space, for (u, v)
         double rounding = 0; // bound on the rounding of a hit point: 32 ulps of its magnitude
         EmbreeFrame frame;
     };

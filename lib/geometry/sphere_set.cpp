@@ -82,7 +82,7 @@ void SphereSet::nearest_roots(const RayQuery &query, double *t) const {
         const Lanes4 s = b * inv_a, lx = fx - dx * s, ly = fy - dy * s, lz = fz - dz * s;
         const Lanes4 disc = a * (r2 - (lx * lx + ly * ly + lz * lz));
         const Mask4 crosses = (disc >= 0) & (r2 >= 0); // unused lanes: r2 < 0
-        if (none_set(crosses)) { // the line misses them all (small spheres, mostly)
+        if (none_set(crosses)) {                       // the line misses them all (small spheres, mostly)
             store4(t + i, none);
             continue;
         }

@@ -38,8 +38,8 @@ template <class Body> void for_each_patch(size_t count, Body &&body) {
 }
 
 void measure(const BezierPatch &patch, Piece &piece, double focus) {
-    piece.deviation = measure_deviation(patch, piece.positions, piece.uvs, piece.indices.data(),
-                                        piece.triangle_count(), focus);
+    piece.deviation =
+        measure_deviation(patch, piece.positions, piece.uvs, piece.indices.data(), piece.triangle_count(), focus);
 }
 
 } // namespace

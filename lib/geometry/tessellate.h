@@ -27,10 +27,10 @@
 namespace ppm {
 
 struct PatchMesh {
-    std::vector<double> positions;        // 3 per vertex
-    std::vector<double> normals;          // 3 per vertex: unit geometric normal of the patch
-    std::vector<double> uvs;              // 2 per vertex: (u, v) in the vertex's patch
-    std::vector<uint32_t> welded;         // per vertex: shared by border vertices at one position
+    std::vector<double> positions; // 3 per vertex
+    std::vector<double> normals;   // 3 per vertex: unit geometric normal of the patch
+    std::vector<double> uvs;       // 2 per vertex: (u, v) in the vertex's patch
+    std::vector<uint32_t> welded;  // per vertex: shared by border vertices at one position
     uint32_t welded_count = 0;
     std::vector<uint32_t> indices;        // 3 per triangle, counter-clockwise in (u, v)
     std::vector<uint32_t> triangle_patch; // per triangle: its patch
@@ -60,8 +60,7 @@ PatchMesh tessellate_adaptive(const std::vector<BezierPatch> &patches, double to
 // distance to a real surface point, so the result bounds the true deviation at the samples
 // from above. Triangles whose coarse samples come within 80% of min(focus, the largest coarse
 // value) are searched to their maximum on lattices up to 8 times finer.
-double measure_deviation(const BezierPatch &patch, const std::vector<double> &positions,
-                         const std::vector<double> &uvs, const uint32_t *indices,
-                         size_t triangle_count, double focus);
+double measure_deviation(const BezierPatch &patch, const std::vector<double> &positions, const std::vector<double> &uvs,
+                         const uint32_t *indices, size_t triangle_count, double focus);
 
 } // namespace ppm

@@ -10,8 +10,8 @@ namespace tess {
 
 [[noreturn]] void over_budget(double triangles) {
     invalid_argument("the tessellation would need about " + format_number(std::round(triangles)) +
-                     " triangles, more than the limit of " +
-                     format_number(max_tessellation_triangles) + ": use a larger tolerance or grid");
+                     " triangles, more than the limit of " + format_number(max_tessellation_triangles) +
+                     ": use a larger tolerance or grid");
 }
 
 } // namespace tess

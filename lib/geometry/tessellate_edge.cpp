@@ -56,10 +56,10 @@ double curve_distance(const Vec3 c[4], const Vec3 &x, double t) {
 Edge patch_edge(const BezierPatch &patch, int side) {
     Vec3 q[4];
     for (int k = 0; k < 4; ++k)
-        q[k] = side == side_v0 ? patch.at(0, k)
-             : side == side_u1 ? patch.at(k, 3)
-             : side == side_v1 ? patch.at(3, k)
-                               : patch.at(k, 0);
+        q[k] = side == side_v0   ? patch.at(0, k)
+               : side == side_u1 ? patch.at(k, 3)
+               : side == side_v1 ? patch.at(3, k)
+                                 : patch.at(k, 0);
     Edge e;
     e.reversed = less(q[3], q[0]) || (same(q[3], q[0]) && less(q[2], q[1]));
     for (int k = 0; k < 4; ++k) e.c[k] = q[e.reversed ? 3 - k : k];

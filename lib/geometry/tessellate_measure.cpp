@@ -128,7 +128,10 @@ public:
         if (d > floor && (u == 0 || u == 1 || v == 0 || v == 1)) {
             Vec3 edge[4];
             for (int k = 0; k < 4; ++k)
-                edge[k] = u == 0 ? patch_.at(k, 0) : u == 1 ? patch_.at(k, 3) : v == 0 ? patch_.at(0, k) : patch_.at(3, k);
+                edge[k] = u == 0   ? patch_.at(k, 0)
+                          : u == 1 ? patch_.at(k, 3)
+                          : v == 0 ? patch_.at(0, k)
+                                   : patch_.at(3, k);
             d = std::min(d, curve_distance(edge, x, u == 0 || u == 1 ? v : u));
         }
         if (d <= retry_above_) return d;
@@ -209,9 +212,8 @@ double refine(const TriangleProbe &probe, const CoarseLattice value, double top)
 
 } // namespace
 
-double measure_deviation(const BezierPatch &patch, const std::vector<double> &positions,
-                         const std::vector<double> &uvs, const uint32_t *indices,
-                         size_t triangle_count, double focus) {
+double measure_deviation(const BezierPatch &patch, const std::vector<double> &positions, const std::vector<double> &uvs,
+                         const uint32_t *indices, size_t triangle_count, double focus) {
     // Triangles within 80% of the focus are refined at once; which others come within 80% of
     // the largest coarse value is known only at the end.
     const double early = 0.8 * focus;

@@ -88,8 +88,7 @@ PatchModel make_model(const BezierPatch &patch) {
 std::vector<double> place_lines(const std::vector<double> &density, uint32_t n) {
     const size_t intervals = density.size() - 1;
     std::vector<double> cumulative(intervals + 1, 0.0);
-    for (size_t k = 0; k < intervals; ++k)
-        cumulative[k + 1] = cumulative[k] + std::max(density[k], density[k + 1]);
+    for (size_t k = 0; k < intervals; ++k) cumulative[k + 1] = cumulative[k] + std::max(density[k], density[k + 1]);
     std::vector<double> lines(size_t(n) + 1);
     lines[0] = 0;
     lines[n] = 1;
@@ -105,8 +104,8 @@ std::vector<double> place_lines(const std::vector<double> &density, uint32_t n) 
 
 double patch_triangles(const GridCounts &g, const uint32_t segments[4]) {
     const double nu = g.nu, nv = g.nv;
-    return 2 * (nu - 2) * (nv - 2) + 2 * (nu - 2) + 2 * (nv - 2) + segments[0] + segments[1] +
-           segments[2] + segments[3];
+    return 2 * (nu - 2) * (nv - 2) + 2 * (nu - 2) + 2 * (nv - 2) + segments[0] + segments[1] + segments[2] +
+           segments[3];
 }
 
 GridCounts choose_counts(const PatchModel &m, double target) {

@@ -97,9 +97,9 @@ Piece build_grid(const BezierPatch &patch, uint32_t n) {
         for (uint32_t i = 0; i <= n; ++i) {
             const double u = double(i) / n, v = double(j) / n;
             const Vec3 *border = j == 0   ? &side_point(points[side_v0], edges[side_v0], i, n)
-                               : j == n   ? &side_point(points[side_v1], edges[side_v1], i, n)
-                               : i == 0   ? &side_point(points[side_u0], edges[side_u0], j, n)
-                               : i == n   ? &side_point(points[side_u1], edges[side_u1], j, n)
+                                 : j == n ? &side_point(points[side_v1], edges[side_v1], i, n)
+                                 : i == 0 ? &side_point(points[side_u0], edges[side_u0], j, n)
+                                 : i == n ? &side_point(points[side_u1], edges[side_u1], j, n)
                                           : nullptr;
             ids[size_t(j) * (n + 1) + i] = border ? builder.vertex(*border, u, v, true) : builder.vertex(u, v);
         }
@@ -127,7 +127,9 @@ Piece build_adaptive(const BezierPatch &patch, const Edge edges[4], const uint32
     const uint32_t side_start[4] = {c00, c10, c01, c00}, side_end[4] = {c10, c11, c11, c01};
 
     std::vector<uint32_t> inner((nu - 1) * size_t(nv - 1));
-    const auto inner_id = [&](uint32_t i, uint32_t j) -> uint32_t & { return inner[(j - 1) * size_t(nu - 1) + (i - 1)]; };
+    const auto inner_id = [&](uint32_t i, uint32_t j) -> uint32_t & {
+        return inner[(j - 1) * size_t(nu - 1) + (i - 1)];
+    };
     for (uint32_t j = 1; j < nv; ++j)
         for (uint32_t i = 1; i < nu; ++i) inner_id(i, j) = builder.vertex(u_at(i), v_at(j));
     for (uint32_t j = 1; j + 1 < nv; ++j)
@@ -158,8 +160,8 @@ Piece build_adaptive(const BezierPatch &patch, const Edge edges[4], const uint32
         if (e.collapsed) {
             for (size_t k = 0; k + 1 < row.size(); ++k) {
                 const double t = (row_t[k] + row_t[k + 1]) / 2;
-                const uint32_t apex = along_u ? builder.vertex(e.c[0], t, fixed, true)
-                                              : builder.vertex(e.c[0], fixed, t, true);
+                const uint32_t apex =
+                    along_u ? builder.vertex(e.c[0], t, fixed, true) : builder.vertex(e.c[0], fixed, t, true);
                 builder.triangle(apex, row[k], row[k + 1]);
             }
             continue;

@@ -1,8 +1,8 @@
 #include "io/bpt_reader.h"
 
 #include "core/error.h"
-#include "math/limits.h"
 #include "io/text_file.h"
+#include "math/limits.h"
 
 #include <cerrno>
 #include <cstdlib>
@@ -73,7 +73,10 @@ private:
         while (pos_ < text_.size()) {
             const char c = text_[pos_];
             if (c == '\n') ++line_;
-            if (is_space(c)) { ++pos_; continue; }
+            if (is_space(c)) {
+                ++pos_;
+                continue;
+            }
             if (c == '#') {
                 while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
                 continue;
@@ -104,33 +107,31 @@ std::vector<BezierPatch> parse_bpt(const std::string &text, const std::string &n
     std::vector<BezierPatch> patches;
     for (long long index = 0; index < count; ++index) {
         if (tokens.at_end())
-            tokens.error("file ends after " + std::to_string(index) + " of " +
-                         std::to_string(count) + " patches");
+            tokens.error("file ends after " + std::to_string(index) + " of " + std::to_string(count) + " patches");
         const long long degree_u = tokens.integer("degree in u");
         const size_t degree_line = tokens.token_line();
         const long long degree_v = tokens.integer("degree in v");
         if (degree_u != 3 || degree_v != 3 || tokens.token_line() != degree_line)
-            tokens.error("patch " + std::to_string(index) + ": degree line must be '3 3' (only bicubic patches are supported), found '" +
+            tokens.error("patch " + std::to_string(index) +
+                         ": degree line must be '3 3' (only bicubic patches are supported), found '" +
                          std::to_string(degree_u) + " " + std::to_string(degree_v) + "'");
         BezierPatch patch;
         for (int k = 0; k < 16; ++k) {
             for (int axis = 0; axis < 3; ++axis) {
                 const char *what[] = {"x", "y", "z"};
-                const std::string label = "patch " + std::to_string(index) + " control point " +
-                                          std::to_string(k) + " " + what[axis];
+                const std::string label =
+                    "patch " + std::to_string(index) + " control point " + std::to_string(k) + " " + what[axis];
                 patch.p[k][axis] = tokens.number(label.c_str());
             }
         }
         patches.push_back(patch);
     }
     if (!tokens.at_end())
-        tokens.error("unexpected content after the " + std::to_string(count) +
-                     " patches the file announces: '" + tokens.next() + "'");
+        tokens.error("unexpected content after the " + std::to_string(count) + " patches the file announces: '" +
+                     tokens.next() + "'");
     return patches;
 }
 
-std::vector<BezierPatch> read_bpt_file(const std::string &path) {
-    return parse_bpt(read_text_file(path), path);
-}
+std::vector<BezierPatch> read_bpt_file(const std::string &path) { return parse_bpt(read_text_file(path), path); }
 
 } // namespace ppm

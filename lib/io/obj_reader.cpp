@@ -4,10 +4,10 @@
 #include "io/text_file.h"
 #include "math/limits.h"
 
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <array>
 #include <cstdlib>
 #include <map>
 #include <tuple>
@@ -72,7 +72,8 @@ private:
                 if (w < 0x20 || w == 0x7f) {
                     char code[8];
                     std::snprintf(code, sizeof code, "0x%02x", w);
-                    error(std::string("control character ") + code + " in the line (words are separated by "
+                    error(std::string("control character ") + code +
+                          " in the line (words are separated by "
                           "spaces and tabs, lines end with a line feed)");
                 }
                 ++word_end;
@@ -82,10 +83,14 @@ private:
         }
         if (words_.empty()) return;
         const std::string &keyword = words_[0];
-        if (keyword == "v") read_vector(positions_, 3);
-        else if (keyword == "vn") read_vector(normals_, 3);
-        else if (keyword == "vt") read_texcoord();
-        else if (keyword == "f") read_face();
+        if (keyword == "v")
+            read_vector(positions_, 3);
+        else if (keyword == "vn")
+            read_vector(normals_, 3);
+        else if (keyword == "vt")
+            read_texcoord();
+        else if (keyword == "f")
+            read_face();
         // Everything else (o, g, s, usemtl, mtllib, l, p, ...) does not change the surface.
     }
 
@@ -143,8 +148,8 @@ private:
             if (position.empty()) error("face corner '" + word + "' has no vertex index");
             Corner corner{index(position, positions_.size(), "vertex"), -1, -1};
             if (slash1 != std::string::npos) {
-                const std::string texcoord = word.substr(slash1 + 1, slash2 == std::string::npos ? std::string::npos
-                                                                                                  : slash2 - slash1 - 1);
+                const std::string texcoord =
+                    word.substr(slash1 + 1, slash2 == std::string::npos ? std::string::npos : slash2 - slash1 - 1);
                 if (!texcoord.empty()) corner.texcoord = index(texcoord, texcoords_.size(), "texture coordinate");
             }
             if (slash2 != std::string::npos) {
@@ -204,8 +209,8 @@ private:
                 ++triangles;
             }
             if (triangles == 0)
-                fail(PPM_ERROR_PARSE, name_ + ":" + std::to_string(face.line) +
-                                          ": the face repeats its corners and has no area");
+                fail(PPM_ERROR_PARSE,
+                     name_ + ":" + std::to_string(face.line) + ": the face repeats its corners and has no area");
         }
         return mesh;
     }

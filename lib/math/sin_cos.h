@@ -10,10 +10,20 @@ namespace ppm {
 // sin x and cos x for |x| <= pi/4, by the minimax polynomials of Cephes (Moshier, sin.c).
 inline void sin_cos_quarter(double x, double *s, double *c) {
     const double z = x * x;
-    const double sp = ((((1.58962301576546568060e-10 * z - 2.50507477628578072866e-8) * z + 2.75573136213857245213e-6) * z -
-                        1.98412698295895385996e-4) * z + 8.33333333332211858878e-3) * z - 1.66666666666666307295e-1;
-    const double cp = ((((-1.13585365213876817300e-11 * z + 2.08757008419747316778e-9) * z - 2.75573141792967388112e-7) * z +
-                        2.48015872888517045348e-5) * z - 1.38888888888730564116e-3) * z + 4.16666666666665929218e-2;
+    const double sp =
+        ((((1.58962301576546568060e-10 * z - 2.50507477628578072866e-8) * z + 2.75573136213857245213e-6) * z -
+          1.98412698295895385996e-4) *
+             z +
+         8.33333333332211858878e-3) *
+            z -
+        1.66666666666666307295e-1;
+    const double cp =
+        ((((-1.13585365213876817300e-11 * z + 2.08757008419747316778e-9) * z - 2.75573141792967388112e-7) * z +
+          2.48015872888517045348e-5) *
+             z -
+         1.38888888888730564116e-3) *
+            z +
+        4.16666666666665929218e-2;
     *s = x + x * z * sp;
     *c = 1.0 - 0.5 * z + z * z * cp;
 }
@@ -37,10 +47,22 @@ inline void sin_cos_2pi(double u, double *s, double *c) {
     double sx, cx;
     sin_cos_quarter(x, &sx, &cx);
     switch (k & 3) {
-    case 0: *s = sx; *c = cx; break;
-    case 1: *s = cx; *c = -sx; break;
-    case 2: *s = -sx; *c = -cx; break;
-    default: *s = -cx; *c = sx; break;
+    case 0:
+        *s = sx;
+        *c = cx;
+        break;
+    case 1:
+        *s = cx;
+        *c = -sx;
+        break;
+    case 2:
+        *s = -sx;
+        *c = -cx;
+        break;
+    default:
+        *s = -cx;
+        *c = sx;
+        break;
     }
 }
 

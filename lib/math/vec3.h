@@ -12,7 +12,11 @@ struct Vec3 {
     constexpr Vec3() = default;
     constexpr Vec3(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
     static Vec3 from(const double *p) { return {p[0], p[1], p[2]}; }
-    void store(double *p) const { p[0] = x; p[1] = y; p[2] = z; }
+    void store(double *p) const {
+        p[0] = x;
+        p[1] = y;
+        p[2] = z;
+    }
 
     double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
     double &operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
@@ -21,9 +25,24 @@ struct Vec3 {
     Vec3 operator-() const { return {-x, -y, -z}; }
     Vec3 operator*(double s) const { return {x * s, y * s, z * s}; }
     Vec3 operator/(double s) const { return {x / s, y / s, z / s}; }
-    Vec3 &operator+=(const Vec3 &b) { x += b.x; y += b.y; z += b.z; return *this; }
-    Vec3 &operator-=(const Vec3 &b) { x -= b.x; y -= b.y; z -= b.z; return *this; }
-    Vec3 &operator*=(double s) { x *= s; y *= s; z *= s; return *this; }
+    Vec3 &operator+=(const Vec3 &b) {
+        x += b.x;
+        y += b.y;
+        z += b.z;
+        return *this;
+    }
+    Vec3 &operator-=(const Vec3 &b) {
+        x -= b.x;
+        y -= b.y;
+        z -= b.z;
+        return *this;
+    }
+    Vec3 &operator*=(double s) {
+        x *= s;
+        y *= s;
+        z *= s;
+        return *this;
+    }
 };
 
 inline Vec3 operator*(double s, const Vec3 &v) { return v * s; }
@@ -48,18 +67,12 @@ inline Vec3 normalize(const Vec3 &v) {
 }
 // std::min/max rather than fmin/fmax: these inline to single instructions, and coordinates
 // are checked to be finite where they enter the library.
-inline Vec3 vmin(const Vec3 &a, const Vec3 &b) {
-    return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)};
-}
-inline Vec3 vmax(const Vec3 &a, const Vec3 &b) {
-    return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)};
-}
+inline Vec3 vmin(const Vec3 &a, const Vec3 &b) { return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)}; }
+inline Vec3 vmax(const Vec3 &a, const Vec3 &b) { return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)}; }
 inline double max_abs_component(const Vec3 &v) {
     return std::max(std::fabs(v.x), std::max(std::fabs(v.y), std::fabs(v.z)));
 }
-inline bool is_finite(const Vec3 &v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
+inline bool is_finite(const Vec3 &v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // Orthonormal basis around a unit vector (Duff et al. 2017, "Building an Orthonormal Basis,
 // Revisited"): branch-free and accurate for every direction.
@@ -75,8 +88,14 @@ struct Box3 {
     Vec3 lower{INFINITY, INFINITY, INFINITY};
     Vec3 upper{-INFINITY, -INFINITY, -INFINITY};
 
-    void extend(const Vec3 &p) { lower = vmin(lower, p); upper = vmax(upper, p); }
-    void extend(const Box3 &b) { lower = vmin(lower, b.lower); upper = vmax(upper, b.upper); }
+    void extend(const Vec3 &p) {
+        lower = vmin(lower, p);
+        upper = vmax(upper, p);
+    }
+    void extend(const Box3 &b) {
+        lower = vmin(lower, b.lower);
+        upper = vmax(upper, b.upper);
+    }
     bool empty() const { return !(lower.x <= upper.x && lower.y <= upper.y && lower.z <= upper.z); }
     Vec3 center() const { return (lower + upper) * 0.5; }
     double diagonal() const { return length(upper - lower); }
@@ -92,13 +111,11 @@ struct Affine {
                 m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]};
     }
     Vec3 vector(const Vec3 &v) const {
-        return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z,
-                m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+        return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
                 m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
     }
     double determinant() const {
-        return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-               m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+        return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
                m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
     }
     // Normals transform with the inverse transpose, which is the cofactor matrix divided by

@@ -36,9 +36,10 @@ constexpr std::size_t kChunkPoints = 4096;
 // points in image order, and a photon pass in Morton order, mostly hit the cache (a hash per
 // cell misses the cache at nearly every entry).
 std::uint64_t HitPointGrid::bucket(std::int64_t i, std::int64_t j, std::int64_t k) const {
-    const auto bi = static_cast<std::uint64_t>(i), bj = static_cast<std::uint64_t>(j), bk = static_cast<std::uint64_t>(k);
-    std::uint64_t h = (bi >> 2) * 0x9E3779B97F4A7C15ull ^ (bj >> 2) * 0xC2B2AE3D27D4EB4Full ^
-                      (bk >> 2) * 0x165667B19E3779F9ull;
+    const auto bi = static_cast<std::uint64_t>(i), bj = static_cast<std::uint64_t>(j),
+               bk = static_cast<std::uint64_t>(k);
+    std::uint64_t h =
+        (bi >> 2) * 0x9E3779B97F4A7C15ull ^ (bj >> 2) * 0xC2B2AE3D27D4EB4Full ^ (bk >> 2) * 0x165667B19E3779F9ull;
     h ^= h >> 29;
     return (h << 6 | (bi & 3) << 4 | (bj & 3) << 2 | (bk & 3)) & bucket_mask_;
 }
@@ -64,8 +65,7 @@ std::uint64_t HitPointGrid::bucket(std::int64_t i, std::int64_t j, std::int64_t 
     return range;
 }
 
-template <class F>
-[[gnu::always_inline]] inline void HitPointGrid::for_each_bucket(const HitPoint &p, F &&f) const {
+template <class F> [[gnu::always_inline]] inline void HitPointGrid::for_each_bucket(const HitPoint &p, F &&f) const {
     const CellRange range = cells_of(p);
     // Most balls lie within one cell (cells are many radii wide).
     if (range.lo[0] == range.hi[0] && range.lo[1] == range.hi[1] && range.lo[2] == range.hi[2]) {
@@ -126,12 +126,13 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count, const HitPoi
     const double extent = max_abs_component(upper - lower);
     if (!std::isfinite(extent)) {
         size_ = 0;
-        invalid_argument("hit point coordinates or radii too large for the grid (extent " + std::to_string(extent) + ")");
+        invalid_argument("hit point coordinates or radii too large for the grid (extent " + std::to_string(extent) +
+                         ")");
     }
     // The largest ball spans 4 widths, a hair less with the margin, so rounding cannot push it
     // over 5 cells; the last floor keeps 1 / width finite.
-    const double width = std::max({kCellWidthInRadii * sum_r / samples, 2.0 * max_r / (kMaxAcross - 1) * (1 + 1e-6),
-                                   extent * 0x1p-30, 0x1p-500});
+    const double width = std::max(
+        {kCellWidthInRadii * sum_r / samples, 2.0 * max_r / (kMaxAcross - 1) * (1 + 1e-6), extent * 0x1p-30, 0x1p-500});
     // Hit points crowd on walls, and the walls bounding a scene are the faces of the points'
     // box. A face lying near a cell face would put every ball on that wall into two cells. So
     // each axis gets its own width, at least `width`, fitting a whole number of cells between
@@ -184,8 +185,8 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count, const HitPoi
     if (total > UINT32_MAX) {
         size_ = 0;
         bucket_start_.clear();
-        fail(PPM_ERROR_OUT_OF_MEMORY, "the hit point grid would need " + std::to_string(total) +
-                                          " cell entries, more than 2^32");
+        fail(PPM_ERROR_OUT_OF_MEMORY,
+             "the hit point grid would need " + std::to_string(total) + " cell entries, more than 2^32");
     }
     bucket_start_[buckets] = static_cast<std::uint32_t>(total);
     // Kept between builds, replaced (not copied: the old entries are stale) when too small,
@@ -197,8 +198,8 @@ void HitPointGrid::build(const HitPoint *points, std::size_t count, const HitPoi
         entries_.reset(); // first: the old and the new buffer are never held at once
         entries_capacity_ = 0;
         const std::uint64_t capacity = total + total / 8;
-        allocate_or_fail("the hit point grid's " + std::to_string(capacity) + " cell entries",
-                         capacity * sizeof(Entry), [&] {
+        allocate_or_fail("the hit point grid's " + std::to_string(capacity) + " cell entries", capacity * sizeof(Entry),
+                         [&] {
                              try {
                                  entries_.reset(new Entry[capacity]);
                              } catch (...) {
@@ -234,7 +235,8 @@ void HitPointGrid::list_chunk(const HitPoint *points, std::size_t begin, std::si
     for (std::uint64_t &entry : chunk.entries) {
         const std::uint64_t b = entry >> 32;
         std::size_t slot = (b * 0x9E3779B97F4A7C15ull) >> 40 & (slots - 1);
-        while (chunk.table[slot] != UINT32_MAX && chunk.runs[chunk.table[slot]].bucket != b) slot = (slot + 1) & (slots - 1);
+        while (chunk.table[slot] != UINT32_MAX && chunk.runs[chunk.table[slot]].bucket != b)
+            slot = (slot + 1) & (slots - 1);
         if (chunk.table[slot] == UINT32_MAX) {
             chunk.table[slot] = static_cast<std::uint32_t>(chunk.runs.size());
             chunk.runs.push_back({b, 0, 0});

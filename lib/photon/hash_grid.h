@@ -46,10 +46,7 @@ public:
     // Calls visit(index, dist2) once for every hit point with distance2(photon, position)
     // <= its r2, in no particular order. Thread-safe between builds.
     void query(const Vec3 &photon, HitPointVisitor visit) const;
-    template <class F>
-    void query(const Vec3 &photon, F &&visit) const {
-        query(photon, HitPointVisitor::of(visit));
-    }
+    template <class F> void query(const Vec3 &photon, F &&visit) const { query(photon, HitPointVisitor::of(visit)); }
 
 private:
     struct CellRange {
@@ -66,7 +63,7 @@ private:
     struct Chunk {
         std::vector<std::uint64_t> entries; // run index << 32 | point index
         std::vector<BucketRun> runs;
-        std::vector<std::uint32_t> table;   // open addressing: bucket -> run index
+        std::vector<std::uint32_t> table; // open addressing: bucket -> run index
     };
     void list_chunk(const HitPoint *points, std::size_t begin, std::size_t end, Chunk &chunk) const;
 
@@ -74,8 +71,7 @@ private:
     std::int64_t cell(double x, int axis) const;
     CellRange cells_of(const HitPoint &p) const;
     // Calls f(bucket) once for each distinct bucket of the cells the point's ball overlaps.
-    template <class F>
-    void for_each_bucket(const HitPoint &p, F &&f) const;
+    template <class F> void for_each_bucket(const HitPoint &p, F &&f) const;
 
     std::size_t size_ = 0;
     // A point listed in a cell: its copy and its index in the caller's array.
@@ -85,15 +81,15 @@ private:
         double r2;
         std::uint32_t index;
     };
-    std::unique_ptr<Entry[]> entries_;        // bucket by bucket (stale beyond the last bucket's end)
+    std::unique_ptr<Entry[]> entries_; // bucket by bucket (stale beyond the last bucket's end)
     std::size_t entries_capacity_ = 0;
     std::vector<std::uint32_t> bucket_start_; // bucket b lists entries_[start[b], start[b+1]); empty: no point
     std::uint64_t bucket_mask_ = 0;
-    Vec3 origin_;                             // lower corner of the balls' bounds
-    double inv_cell_[3] = {0, 0, 0};          // 1 / cell width per axis
-    std::int64_t cells_[3] = {0, 0, 0};       // cells per axis
+    Vec3 origin_;                       // lower corner of the balls' bounds
+    double inv_cell_[3] = {0, 0, 0};    // 1 / cell width per axis
+    std::int64_t cells_[3] = {0, 0, 0}; // cells per axis
     double max_r2_ = 0;
-    double pad_ = 0;                          // added to every radius against rounding
+    double pad_ = 0; // added to every radius against rounding
     // Build scratch, reused: per-chunk entry lists and the buckets' counters.
     std::vector<Chunk> chunks_;
     std::unique_ptr<std::atomic<std::uint32_t>[]> cursor_;

@@ -60,8 +60,7 @@ struct HitPointVisitor {
     void operator()(std::uint32_t index, double dist2) const { visit(context, index, dist2); }
 
     // Wraps any callable f(std::uint32_t index, double dist2); f must outlive the visitor.
-    template <class F>
-    static HitPointVisitor of(F &f) {
+    template <class F> static HitPointVisitor of(F &f) {
         return {[](void *c, std::uint32_t index, double dist2) {
                     (*static_cast<std::remove_reference_t<F> *>(c))(index, dist2);
                 },

@@ -28,13 +28,12 @@ struct EntryCloud {
 
     std::size_t kdtree_get_point_count() const { return count; }
     double kdtree_get_pt(std::uint32_t i, std::size_t dim) const { return entries[i].p[dim]; }
-    template <class BBox>
-    bool kdtree_get_bbox(BBox &) const { return false; }
+    template <class BBox> bool kdtree_get_bbox(BBox &) const { return false; }
 };
 
-using Tree = nanoflann::KDTreeSingleIndexAdaptor<
-    nanoflann::L2_Simple_Adaptor<double, EntryCloud, double, std::uint32_t>, EntryCloud, 3,
-    std::uint32_t>;
+using Tree =
+    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, EntryCloud, double, std::uint32_t>,
+                                        EntryCloud, 3, std::uint32_t>;
 
 // Queries reach many points (the ball of the largest radius), so leaves bigger than
 // nanoflann's default of 10 pay (measured with tests/bench_hit_points: docs/bench/code-history.md).
@@ -44,8 +43,7 @@ constexpr std::size_t kLeafSize = 32;
 // dist2 < worstDist(); addPoint applies each point's radius and calls the visitor at once.
 class VisitWithinRadius {
 public:
-    VisitWithinRadius(const Entry *entries, const Vec3 &photon, double search_r2,
-                      HitPointVisitor visit)
+    VisitWithinRadius(const Entry *entries, const Vec3 &photon, double search_r2, HitPointVisitor visit)
         : entries_(entries), photon_(photon), search_r2_(search_r2), visit_(visit) {}
 
     double worstDist() const { return search_r2_; }
@@ -125,7 +123,8 @@ void split(Entry *begin, Entry *end, int count, std::pair<Entry *, Entry *> *par
     Entry *middle = std::partition(begin, end, [&](const Entry &e) { return e.p[axis] < plane; });
     // A plane with (nearly) everything on one side, as when many points share the median
     // coordinate: halve by count instead.
-    if (middle - begin < static_cast<std::ptrdiff_t>(size / 8) || end - middle < static_cast<std::ptrdiff_t>(size / 8)) {
+    if (middle - begin < static_cast<std::ptrdiff_t>(size / 8) ||
+        end - middle < static_cast<std::ptrdiff_t>(size / 8)) {
         middle = begin + size / 2;
         std::nth_element(begin, middle, end, [&](const Entry &a, const Entry &b) { return a.p[axis] < b.p[axis]; });
     }

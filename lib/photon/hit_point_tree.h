@@ -34,10 +34,7 @@ public:
     // Calls visit(index, dist2) once for every hit point with distance2(photon, position)
     // <= its r2, in no particular order. Thread-safe between builds.
     void query(const Vec3 &photon, HitPointVisitor visit) const;
-    template <class F>
-    void query(const Vec3 &photon, F &&visit) const {
-        query(photon, HitPointVisitor::of(visit));
-    }
+    template <class F> void query(const Vec3 &photon, F &&visit) const { query(photon, HitPointVisitor::of(visit)); }
 
 private:
     struct Impl;

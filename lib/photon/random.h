@@ -37,9 +37,7 @@ inline PhiloxCounter philox4x32_10(PhiloxCounter c, PhiloxKey k) {
 }
 
 // The top 53 bits as a double in [0, 1): a multiple of 2^-53, at most 1 - 2^-53.
-inline double uniform_from_bits(std::uint64_t bits) {
-    return static_cast<double>(bits >> 11) * 0x1p-53;
-}
+inline double uniform_from_bits(std::uint64_t bits) { return static_cast<double>(bits >> 11) * 0x1p-53; }
 
 // 32 bits as a double in [0, 1): a multiple of 2^-32, at most 1 - 2^-32 (exact in a double).
 inline double uniform_from_bits32(std::uint32_t bits) { return static_cast<double>(bits) * 0x1p-32; }

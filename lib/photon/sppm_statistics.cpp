@@ -26,14 +26,13 @@ Rgb radiance_estimate(const PixelStatistics &s, std::uint64_t photons_emitted, s
 
 namespace {
 
-constexpr int kFractionBits = 40;        // q = S 2^-40
-constexpr double kMaxQuanta = 0x1p62;    // per value: v < 2^22 S
-constexpr double kWrap = 0x1p64;         // weight of one wrap-around of the low word
+constexpr int kFractionBits = 40;     // q = S 2^-40
+constexpr double kMaxQuanta = 0x1p62; // per value: v < 2^22 S
+constexpr double kWrap = 0x1p64;      // weight of one wrap-around of the low word
 
 } // namespace
 
-FluxAccumulator::FluxAccumulator(std::size_t pixel_count, double flux_scale)
-    : pixel_count_(pixel_count) {
+FluxAccumulator::FluxAccumulator(std::size_t pixel_count, double flux_scale) : pixel_count_(pixel_count) {
     if (!(flux_scale > 0) || !std::isfinite(flux_scale))
         invalid_argument("flux scale must be positive and finite, got " + format_number(flux_scale));
     // S = 2^e, the power of two at or above flux_scale; q and 1/q are then exact powers of two

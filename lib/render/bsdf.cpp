@@ -13,9 +13,8 @@ namespace {
 
 void require_reflectance(const Rgb &c, const char *what) {
     if (!(c.is_finite() && c.min() >= 0 && c.max() <= 1))
-        invalid_argument(std::string(what) + " must lie in [0, 1] per channel, got (" +
-                         format_number(c.r) + ", " + format_number(c.g) + ", " +
-                         format_number(c.b) + ")");
+        invalid_argument(std::string(what) + " must lie in [0, 1] per channel, got (" + format_number(c.r) + ", " +
+                         format_number(c.g) + ", " + format_number(c.b) + ")");
 }
 
 double require_eta(double int_ior, double ext_ior) {
@@ -120,8 +119,7 @@ double Bsdf::specular_probability(const Vec3 &wo) const {
     return 0.0;
 }
 
-BsdfSample Bsdf::sample(const Vec3 &wo, double u_lobe, double u1, double u2,
-                        TransportMode mode) const {
+BsdfSample Bsdf::sample(const Vec3 &wo, double u_lobe, double u1, double u2, TransportMode mode) const {
     BsdfSample s;
     if (wo.z == 0) return s;
 
@@ -171,13 +169,11 @@ BsdfSample Bsdf::sample(const Vec3 &wo, double u_lobe, double u1, double u2,
             const double p_diffuse = 1.0 - p_specular;
             s.pdf = p_diffuse * square_to_cosine_hemisphere_pdf(s.wi);
             const double fresnel_i = fresnel_dielectric(s.wi.z, eta_);
-            s.weight = reflectance_ * (coat_diffuse_scale_ * (1.0 - fresnel_o) *
-                                       (1.0 - fresnel_i) / p_diffuse);
+            s.weight = reflectance_ * (coat_diffuse_scale_ * (1.0 - fresnel_o) * (1.0 - fresnel_i) / p_diffuse);
         }
         break;
     }
-    case Type::Dielectric:
-        break;
+    case Type::Dielectric: break;
     }
     if (!(s.pdf > 0)) return BsdfSample{};
     if (back) s.wi = flip_z(s.wi);
@@ -187,17 +183,14 @@ BsdfSample Bsdf::sample(const Vec3 &wo, double u_lobe, double u1, double u2,
 Rgb Bsdf::eval(const Vec3 &wo, const Vec3 &wi) const {
     if (!(wo.z * wi.z > 0)) return Rgb();
     switch (type_) {
-    case Type::Diffuse:
-        return reflectance_ * kInvPi;
+    case Type::Diffuse: return reflectance_ * kInvPi;
     case Type::Coated: {
         const double fresnel_o = fresnel_dielectric(std::fabs(wo.z), eta_);
         const double fresnel_i = fresnel_dielectric(std::fabs(wi.z), eta_);
-        return reflectance_ *
-               (coat_diffuse_scale_ * (1.0 - fresnel_o) * (1.0 - fresnel_i) * kInvPi);
+        return reflectance_ * (coat_diffuse_scale_ * (1.0 - fresnel_o) * (1.0 - fresnel_i) * kInvPi);
     }
     case Type::Mirror:
-    case Type::Dielectric:
-        break;
+    case Type::Dielectric: break;
     }
     return Rgb();
 }
@@ -206,17 +199,15 @@ FixedWoLobe Bsdf::fixed_wo(const Vec3 &wo, const Rgb &weight) const {
     FixedWoLobe lobe;
     if (wo.z == 0 || !std::isfinite(wo.z)) return lobe;
     switch (type_) {
-    case Type::Diffuse:
-        lobe.factor_ = weight * (reflectance_ * kInvPi);
-        break;
+    case Type::Diffuse: lobe.factor_ = weight * (reflectance_ * kInvPi); break;
     case Type::Coated:
-        lobe.factor_ = weight * (reflectance_ * (coat_diffuse_scale_ * (1.0 - fresnel_dielectric(std::fabs(wo.z), eta_)) * kInvPi));
+        lobe.factor_ = weight * (reflectance_ *
+                                 (coat_diffuse_scale_ * (1.0 - fresnel_dielectric(std::fabs(wo.z), eta_)) * kInvPi));
         lobe.eta_ = eta_;
         lobe.coat_ = true;
         break;
     case Type::Mirror:
-    case Type::Dielectric:
-        break;
+    case Type::Dielectric: break;
     }
     return lobe;
 }
@@ -225,14 +216,10 @@ double Bsdf::pdf(const Vec3 &wo, const Vec3 &wi) const {
     if (!(wo.z * wi.z > 0)) return 0.0;
     const double cosine_pdf = std::fabs(wi.z) * kInvPi;
     switch (type_) {
-    case Type::Diffuse:
-        return cosine_pdf;
-    case Type::Coated:
-        return (1.0 - coat_specular_probability(fresnel_dielectric(std::fabs(wo.z), eta_))) *
-               cosine_pdf;
+    case Type::Diffuse: return cosine_pdf;
+    case Type::Coated: return (1.0 - coat_specular_probability(fresnel_dielectric(std::fabs(wo.z), eta_))) * cosine_pdf;
     case Type::Mirror:
-    case Type::Dielectric:
-        break;
+    case Type::Dielectric: break;
     }
     return 0.0;
 }

@@ -39,9 +39,9 @@ enum class TransportMode : uint8_t {
 };
 
 struct BsdfSample {
-    Vec3 wi;             // sampled direction, local frame, unit length
-    Rgb weight;          // f(wo, wi) |cos wi| / pdf: the factor for the path throughput
-    double pdf = 0;      // solid angle density, or the lobe's discrete probability if specular
+    Vec3 wi;        // sampled direction, local frame, unit length
+    Rgb weight;     // f(wo, wi) |cos wi| / pdf: the factor for the path throughput
+    double pdf = 0; // solid angle density, or the lobe's discrete probability if specular
     bool is_specular = false;
     bool valid() const { return pdf > 0; }
 };
@@ -50,7 +50,7 @@ struct BsdfSample {
 // p- (parallel) polarised light; unpolarised light sees their mean.
 struct FresnelTerms {
     double r_s = 1, r_p = 1;
-    double cos_t = 0;    // |cos| of the transmitted direction; 0 on total internal reflection
+    double cos_t = 0; // |cos| of the transmitted direction; 0 on total internal reflection
     double reflectance() const { return 0.5 * (r_s + r_p); }
 };
 
@@ -79,7 +79,7 @@ public:
 
 private:
     friend class Bsdf;
-    Rgb factor_;        // weight f without the coat's (1 - F(cos wi)) factor
+    Rgb factor_; // weight f without the coat's (1 - F(cos wi)) factor
     double eta_ = 1;
     bool coat_ = false;
 };
@@ -124,8 +124,7 @@ public:
 
     // Samples wi given wo, from uniform numbers in [0, 1): u_lobe picks the lobe, (u1, u2) the
     // direction. Returns pdf == 0 (invalid) when nothing scatters.
-    BsdfSample sample(const Vec3 &wo, double u_lobe, double u1, double u2,
-                      TransportMode mode) const;
+    BsdfSample sample(const Vec3 &wo, double u_lobe, double u1, double u2, TransportMode mode) const;
     // f(wo, wi) of the non-specular part (without the cosine), and the density with which
     // sample() produces wi through that part (including the lobe selection probability).
     Rgb eval(const Vec3 &wo, const Vec3 &wi) const;
@@ -139,7 +138,7 @@ private:
     Type type_ = Type::Diffuse;
     Rgb reflectance_;
     double eta_ = 1;
-    double coat_diffuse_scale_ = 1;      // 1 / (1 - Fdr)
+    double coat_diffuse_scale_ = 1;       // 1 / (1 - Fdr)
     double specular_sampling_weight_ = 1; // Mitsuba's s_mean / (s_mean + d_mean)
 };
 

@@ -13,8 +13,8 @@ namespace {
 void require_finite(const Vec3 &v, const char *name) {
     if (!is_finite(v)) invalid_argument(std::string("camera ") + name + " is not finite");
     if (!within(v.x, kCoordinateLimit) || !within(v.y, kCoordinateLimit) || !within(v.z, kCoordinateLimit))
-        invalid_argument(std::string("camera ") + name + " has a coordinate beyond +-" + format_number(kCoordinateLimit) +
-                         " (the limit of scene coordinates)");
+        invalid_argument(std::string("camera ") + name + " has a coordinate beyond +-" +
+                         format_number(kCoordinateLimit) + " (the limit of scene coordinates)");
 }
 
 } // namespace
@@ -26,11 +26,10 @@ Camera::Camera(const CameraSettings &s) {
     if (!(s.fov > 0 && s.fov < 180))
         invalid_argument("camera fov must lie in (0, 180) degrees, got " + format_number(s.fov));
     if (s.width <= 0 || s.height <= 0)
-        invalid_argument("camera image size must be positive, got " + std::to_string(s.width) +
-                         " x " + std::to_string(s.height));
+        invalid_argument("camera image size must be positive, got " + std::to_string(s.width) + " x " +
+                         std::to_string(s.height));
     if (!(s.aperture_radius >= 0 && std::isfinite(s.aperture_radius)))
-        invalid_argument("camera aperture_radius must be finite and >= 0, got " +
-                         format_number(s.aperture_radius));
+        invalid_argument("camera aperture_radius must be finite and >= 0, got " + format_number(s.aperture_radius));
     if (s.aperture_radius > 0 && !(s.focus_distance > 0 && std::isfinite(s.focus_distance)))
         invalid_argument("camera focus_distance must be finite and > 0 for a thin lens, got " +
                          format_number(s.focus_distance));
@@ -79,8 +78,7 @@ CameraRay Camera::generate_ray(double x, double y, double lens_u, double lens_v)
     ax *= aperture_radius_;
     ay *= aperture_radius_;
     // Focus point (px, py, 1) * focus_distance minus the aperture point (ax, ay, 0).
-    const Vec3 d = left_ * (px * focus_distance_ - ax) + up_ * (py * focus_distance_ - ay) +
-                   forward_ * focus_distance_;
+    const Vec3 d = left_ * (px * focus_distance_ - ax) + up_ * (py * focus_distance_ - ay) + forward_ * focus_distance_;
     const Vec3 unit = normalize(d);
     return {origin_ + left_ * ax + up_ * ay, unit, near_clip_ / dot(unit, forward_)};
 }

@@ -35,17 +35,17 @@ namespace ppm {
 struct CameraSettings {
     Vec3 origin{0, 0, 0};
     Vec3 target{0, 0, 1};
-    Vec3 up{0, 1, 0};            // need not be unit or perpendicular, only not along the view
-    double fov = 45.0;           // degrees, full angle along the image x axis, in (0, 180)
-    int width = 0, height = 0;   // pixels, both > 0
-    double aperture_radius = 0;  // scene units; 0 is a pinhole
-    double focus_distance = 0;   // scene units along the view axis; > 0 when aperture_radius > 0
-    double near_clip = 0;        // scene units along the view axis, >= 0
+    Vec3 up{0, 1, 0};           // need not be unit or perpendicular, only not along the view
+    double fov = 45.0;          // degrees, full angle along the image x axis, in (0, 180)
+    int width = 0, height = 0;  // pixels, both > 0
+    double aperture_radius = 0; // scene units; 0 is a pinhole
+    double focus_distance = 0;  // scene units along the view axis; > 0 when aperture_radius > 0
+    double near_clip = 0;       // scene units along the view axis, >= 0
 };
 
 struct CameraRay {
     Vec3 origin;
-    Vec3 direction; // unit length
+    Vec3 direction;   // unit length
     double tnear = 0; // where the ray crosses the near clip plane
 };
 

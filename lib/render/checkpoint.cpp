@@ -97,8 +97,7 @@ void check_counts(const std::string &path, std::uint64_t passes, std::uint64_t e
     if (passes == 0 && (emitted != 0 || slots != 0))
         corrupt(path, "no pass recorded, but " + std::to_string(emitted) + " photons emitted and " +
                           std::to_string(slots) + " pixel slots");
-    if (passes > 0 && slots == 0)
-        corrupt(path, std::to_string(passes) + " passes recorded but no pixel statistics");
+    if (passes > 0 && slots == 0) corrupt(path, std::to_string(passes) + " passes recorded but no pixel statistics");
     if (passes > 0 && (emitted < passes || emitted / passes > kMaxPhotonsPerPass))
         corrupt(path, std::to_string(emitted) + " photons emitted do not fit " + std::to_string(passes) +
                           " passes of 1 to " + std::to_string(kMaxPhotonsPerPass) + " photons");
@@ -114,14 +113,16 @@ void check_counts(const std::string &path, std::uint64_t passes, std::uint64_t e
 void Renderer::check_statistics(const std::string &path, const std::vector<PixelStatistics> &stats,
                                 std::uint64_t passes, std::uint64_t emitted) const {
     const Box3 &box = scene_->bounds();
-    const Vec3 far_corner{std::max(std::abs(box.lower.x - camera_settings_.origin.x), std::abs(box.upper.x - camera_settings_.origin.x)),
-                          std::max(std::abs(box.lower.y - camera_settings_.origin.y), std::abs(box.upper.y - camera_settings_.origin.y)),
-                          std::max(std::abs(box.lower.z - camera_settings_.origin.z), std::abs(box.upper.z - camera_settings_.origin.z))};
+    const Vec3 far_corner{
+        std::max(std::abs(box.lower.x - camera_settings_.origin.x), std::abs(box.upper.x - camera_settings_.origin.x)),
+        std::max(std::abs(box.lower.y - camera_settings_.origin.y), std::abs(box.upper.y - camera_settings_.origin.y)),
+        std::max(std::abs(box.lower.z - camera_settings_.origin.z), std::abs(box.upper.z - camera_settings_.origin.z))};
     const double longest_path = length(far_corner) + kMaxDepthLimit * length(box.upper - box.lower);
     const double largest_r2 = footprint_r2(longest_path);
     const double most_photons = static_cast<double>(emitted) * kMaxDepthLimit;
     const auto bad = [&](std::size_t slot, const char *field, double value, const char *rule) {
-        corrupt(path, "pixel slot " + std::to_string(slot) + ": " + field + " = " + format_number(value) + " (" + rule + ")");
+        corrupt(path,
+                "pixel slot " + std::to_string(slot) + ": " + field + " = " + format_number(value) + " (" + rule + ")");
     };
     const auto check_colour = [&](std::size_t slot, const char *field, const Rgb &c) {
         for (double v : {c.r, c.g, c.b})
@@ -129,8 +130,10 @@ void Renderer::check_statistics(const std::string &path, const std::vector<Pixel
     };
     for (std::size_t i = 0; i < stats.size(); ++i) {
         const PixelStatistics &s = stats[i];
-        if (!(s.n >= 0 && s.n <= most_photons)) bad(i, "photon count N", s.n, "must lie in [0, photons emitted x 1000]");
-        if (!(s.r2 >= 0 && s.r2 <= largest_r2)) bad(i, "radius squared", s.r2, "must lie in [0, the largest initial radius squared]");
+        if (!(s.n >= 0 && s.n <= most_photons))
+            bad(i, "photon count N", s.n, "must lie in [0, photons emitted x 1000]");
+        if (!(s.r2 >= 0 && s.r2 <= largest_r2))
+            bad(i, "radius squared", s.r2, "must lie in [0, the largest initial radius squared]");
         if (s.n > 0 && !(s.r2 > 0)) bad(i, "radius squared", s.r2, "must be > 0 where photons were found");
         // A slot gets its radius before it gathers flux; the next pass would give a slot with
         // r2 = 0 the initial radius and keep its flux.
@@ -215,8 +218,8 @@ void Renderer::load_checkpoint(const std::string &path) {
     if (std::memcmp(magic, kMagic, sizeof magic) != 0) fail(PPM_ERROR_PARSE, path + ": not a libppm checkpoint");
     const auto version = r.get<std::uint32_t>("header");
     if (version != kVersion)
-        fail(PPM_ERROR_PARSE, path + ": checkpoint version " + std::to_string(version) + "; this libppm reads version " +
-                                  std::to_string(kVersion));
+        fail(PPM_ERROR_PARSE, path + ": checkpoint version " + std::to_string(version) +
+                                  "; this libppm reads version " + std::to_string(kVersion));
     if (r.get<std::uint32_t>("header") != kByteOrderMark)
         fail(PPM_ERROR_PARSE, path + ": checkpoint written on a machine of another byte order");
     if (bytes.size() < sizeof(std::uint64_t)) fail(PPM_ERROR_PARSE, path + ": truncated checkpoint");
@@ -238,8 +241,8 @@ void Renderer::load_checkpoint(const std::string &path) {
         fail(PPM_ERROR_PARSE, path + ": corrupt or truncated checkpoint (size or checksum does not match)");
 
     const auto differs = [&](const std::string &what, const std::string &theirs, const std::string &ours) {
-        invalid_argument(path + ": checkpoint of another render: its " + what + " is " + theirs + ", this renderer's is " +
-                         ours);
+        invalid_argument(path + ": checkpoint of another render: its " + what + " is " + theirs +
+                         ", this renderer's is " + ours);
     };
     if (width_ != static_cast<std::uint32_t>(width()) || height_ != static_cast<std::uint32_t>(height()))
         differs("image size", std::to_string(width_) + " x " + std::to_string(height_),

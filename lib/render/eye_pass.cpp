@@ -175,9 +175,9 @@ struct SplitPaths {
     Rgb emitted;
 };
 
-template <class Emit>
-void Renderer::trace_split_path(const ppm_ray &start, const ppm_hit *leaving, Rgb weight, int depth,
-                                double length, int &budget, std::uint32_t pixel, Emit &&emit) {
+template <class Emit> void Renderer::trace_split_path(const ppm_ray &start, const ppm_hit *leaving, Rgb weight,
+                                                      int depth, double length, int &budget, std::uint32_t pixel,
+                                                      Emit &&emit) {
     ppm_ray ray = start;
     SurfacePoint sp;
     for (; depth < settings_.max_depth; ++depth) {
@@ -199,8 +199,7 @@ void Renderer::trace_split_path(const ppm_ray &start, const ppm_hit *leaving, Rg
             continue;
         }
         const BsdfSample reflected = sp.bsdf.sample(sp.wo_local, 0.0, 0.5, 0.5, TransportMode::Radiance);
-        const BsdfSample transmitted =
-            sp.bsdf.sample(sp.wo_local, 1.0 - 0x1p-53, 0.5, 0.5, TransportMode::Radiance);
+        const BsdfSample transmitted = sp.bsdf.sample(sp.wo_local, 1.0 - 0x1p-53, 0.5, 0.5, TransportMode::Radiance);
         const bool two_branches = reflected.valid() && transmitted.valid() && reflected.pdf < 1 &&
                                   transmitted.pdf < 1 && reflected.wi.z * transmitted.wi.z < 0;
         if (two_branches && budget > 0) {
@@ -213,8 +212,9 @@ void Renderer::trace_split_path(const ppm_ray &start, const ppm_hit *leaving, Rg
         }
         // One branch: a mirror, total internal reflection, or glass beyond the split budget
         // (sampled with the pixel's own random numbers, fixed for the whole render).
-        CounterRng rng(settings_.seed, kCameraStream, 0, (std::uint64_t(pixel) << 20) | std::uint64_t(depth) << 8 |
-                                                             static_cast<std::uint64_t>(budget & 0xFF));
+        CounterRng rng(settings_.seed, kCameraStream, 0,
+                       (std::uint64_t(pixel) << 20) | std::uint64_t(depth) << 8 |
+                           static_cast<std::uint64_t>(budget & 0xFF));
         const BsdfSample s = sp.bsdf.sample(sp.wo_local, rng.uniform(), 0.5, 0.5, TransportMode::Radiance);
         if (!s.valid()) return;
         weight *= s.weight;
@@ -233,8 +233,8 @@ void Renderer::init_pixel_slots() {
     const std::uint32_t pixels = static_cast<std::uint32_t>(camera_.width()) * camera_.height();
     // Each slot's state: pixel index, statistics, hit point, gather point, direct light and
     // the flux accumulator's cache line.
-    constexpr std::uint64_t slot_bytes = sizeof(std::uint32_t) + sizeof(PixelStatistics) + sizeof(HitPoint) +
-                                         sizeof(GatherPoint) + sizeof(Rgb) + 64;
+    constexpr std::uint64_t slot_bytes =
+        sizeof(std::uint32_t) + sizeof(PixelStatistics) + sizeof(HitPoint) + sizeof(GatherPoint) + sizeof(Rgb) + 64;
     // Built aside and moved in, so that a failed allocation leaves the renderer as it was;
     // the largest arrays first, so that a film too large fails before any memory is filled.
     allocate_or_fail(film_description(), pixels * slot_bytes, [&] {
@@ -325,10 +325,11 @@ void Renderer::init_ppm_slots() {
                 const size_t first = rows[y].points.size();
                 Rgb emitted;
                 int budget = kSplitBudget;
-                trace_split_path(ray, nullptr, Rgb(1.0), 0, 0.0, budget, pixel, [&](const VisiblePoint *vp, const Rgb &e) {
-                    if (vp) rows[y].points.push_back(*vp);
-                    emitted += e;
-                });
+                trace_split_path(ray, nullptr, Rgb(1.0), 0, 0.0, budget, pixel,
+                                 [&](const VisiblePoint *vp, const Rgb &e) {
+                                     if (vp) rows[y].points.push_back(*vp);
+                                     emitted += e;
+                                 });
                 if (rows[y].points.size() == first) rows[y].points.push_back(VisiblePoint{}); // no point
                 for (size_t k = first; k < rows[y].points.size(); ++k) {
                     row_pixels[y].push_back(pixel);

@@ -51,16 +51,18 @@ Light Light::point(const Vec3 &position, const Rgb &intensity) {
     return l;
 }
 
-Light Light::spot(const Vec3 &position, const Vec3 &target, const Rgb &intensity,
-                  double cutoff_angle_degrees, double beam_width_degrees) {
+Light Light::spot(const Vec3 &position, const Vec3 &target, const Rgb &intensity, double cutoff_angle_degrees,
+                  double beam_width_degrees) {
     check_point(position, "position");
     check_point(target, "target");
     check_color(intensity, "intensity");
     if (!(length2(target - position) > 0)) invalid_argument("spot light target equals its position");
     if (!(cutoff_angle_degrees > 0 && cutoff_angle_degrees <= 90))
-        invalid_argument("spot light cutoff_angle must be in (0, 90] degrees, not " + format_number(cutoff_angle_degrees));
+        invalid_argument("spot light cutoff_angle must be in (0, 90] degrees, not " +
+                         format_number(cutoff_angle_degrees));
     if (!(beam_width_degrees > 0 && beam_width_degrees <= cutoff_angle_degrees))
-        invalid_argument("spot light beam_width must be in (0, cutoff_angle] degrees, not " + format_number(beam_width_degrees));
+        invalid_argument("spot light beam_width must be in (0, cutoff_angle] degrees, not " +
+                         format_number(beam_width_degrees));
     Light l;
     l.type_ = Type::Spot;
     l.position_ = position;

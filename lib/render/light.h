@@ -25,9 +25,9 @@ struct EmittedPhoton {
 
 // One sample of the light arriving at a point.
 struct DirectLightSample {
-    Vec3 direction;          // unit, from the point towards the light
-    double distance = 0;     // to the sampled point on the light (for the shadow ray)
-    Rgb radiance_over_pdf;   // L(direction) / pdf(direction), solid angle measure; 0 if none
+    Vec3 direction;        // unit, from the point towards the light
+    double distance = 0;   // to the sampled point on the light (for the shadow ray)
+    Rgb radiance_over_pdf; // L(direction) / pdf(direction), solid angle measure; 0 if none
 };
 
 class Light {
@@ -37,8 +37,8 @@ public:
     // Factories check their arguments (finite, non-negative colours; positive sizes; angles
     // with 0 < beam_width <= cutoff_angle <= 90 degrees) and throw ppm::Error naming the bad one.
     static Light point(const Vec3 &position, const Rgb &intensity);
-    static Light spot(const Vec3 &position, const Vec3 &target, const Rgb &intensity,
-                      double cutoff_angle_degrees, double beam_width_degrees);
+    static Light spot(const Vec3 &position, const Vec3 &target, const Rgb &intensity, double cutoff_angle_degrees,
+                      double beam_width_degrees);
     static Light quad(const Vec3 &origin, const Vec3 &edge_u, const Vec3 &edge_v, const Rgb &radiance);
     static Light sphere(const Vec3 &center, double radius, const Rgb &radiance);
 
@@ -63,11 +63,11 @@ private:
     Rgb spot_intensity(double cos_theta) const;
 
     Type type_ = Type::Point;
-    Rgb color_;          // intensity (point, spot) or radiance (area)
+    Rgb color_; // intensity (point, spot) or radiance (area)
     Rgb power_;
-    Vec3 position_;      // point/spot position, quad origin, sphere centre
+    Vec3 position_; // point/spot position, quad origin, sphere centre
     Vec3 edge_u_, edge_v_;
-    Frame frame_;        // spot: n = axis; quad: n = unit normal
+    Frame frame_; // spot: n = axis; quad: n = unit normal
     double area_ = 0;
     double radius_ = 0;
     double cos_cutoff_ = 0, cos_beam_ = 1, cutoff_ = 0, beam_ = 0;

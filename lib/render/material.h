@@ -26,8 +26,7 @@ struct Material {
     // The BSDF at a surface point with texture coordinates (s, t).
     Bsdf at(double s, double t) const {
         if (!texture) return bsdf;
-        const Rgb c = texture->lookup(s * mapping.scale_u + mapping.offset_u,
-                                      t * mapping.scale_v + mapping.offset_v);
+        const Rgb c = texture->lookup(s * mapping.scale_u + mapping.offset_u, t * mapping.scale_v + mapping.offset_v);
         return bsdf.with_reflectance({std::min(c.r, 1.0), std::min(c.g, 1.0), std::min(c.b, 1.0)});
     }
 };

@@ -47,8 +47,8 @@ std::uint64_t morton_key(const Vec3 &p, const Box3 &box, int bits) {
 }
 
 bool inside(const Box3 &box, const Vec3 &p) {
-    return p.x >= box.lower.x && p.x <= box.upper.x && p.y >= box.lower.y && p.y <= box.upper.y &&
-           p.z >= box.lower.z && p.z <= box.upper.z;
+    return p.x >= box.lower.x && p.x <= box.upper.x && p.y >= box.lower.y && p.y <= box.upper.y && p.z >= box.lower.z &&
+           p.z <= box.upper.z;
 }
 
 } // namespace
@@ -116,8 +116,8 @@ void Renderer::gather_sorted() {
         total += hits.size();
     }
     const auto photon_at = [&](std::size_t index) -> const PhotonHit & {
-        const std::size_t part =
-            std::upper_bound(batch_part_starts_.begin(), batch_part_starts_.end(), index) - batch_part_starts_.begin() - 1;
+        const std::size_t part = std::upper_bound(batch_part_starts_.begin(), batch_part_starts_.end(), index) -
+                                 batch_part_starts_.begin() - 1;
         return (*batch_parts_[part])[index - batch_part_starts_[part]];
     };
     // One 64-bit word per photon, its Morton code above its index: plain integers sort faster
@@ -132,7 +132,8 @@ void Renderer::gather_sorted() {
         const std::size_t first = batch_part_starts_[part];
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, hits.size(), 4096), [&](const auto &range) {
             for (std::size_t i = range.begin(); i < range.end(); ++i)
-                batch_order_[first + i] = morton_key(hits[i].position, gather_bounds_, axis_bits) << index_bits | (first + i);
+                batch_order_[first + i] =
+                    morton_key(hits[i].position, gather_bounds_, axis_bits) << index_bits | (first + i);
         });
     }
     tbb::parallel_sort(batch_order_.begin(), batch_order_.end());

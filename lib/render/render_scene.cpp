@@ -32,11 +32,11 @@ Light area_light(const Geometry &g, uint32_t geom_id, double offset) {
 } // namespace
 
 RenderScene::RenderScene(const Scene &scene) : scene_(&scene) {
-    if (!scene.committed())
-        fail(PPM_ERROR_INVALID_OPERATION, "the scene must be committed before rendering");
+    if (!scene.committed()) fail(PPM_ERROR_INVALID_OPERATION, "the scene must be committed before rendering");
     const Material grey{Bsdf::diffuse(Rgb(0.5)), nullptr, {}};
     // Photons leave area lights a little more than a hit's error bound off the surface.
-    const double offset = 4 * scene.absolute_tolerance() + 1e-12 * max_abs_component(scene.bounds().upper - scene.bounds().lower);
+    const double offset =
+        4 * scene.absolute_tolerance() + 1e-12 * max_abs_component(scene.bounds().upper - scene.bounds().lower);
     lights_ = scene.lights();
     for (uint32_t id = 0; id < scene.geometry_count(); ++id) {
         const Geometry &g = scene.geometry(id);
@@ -61,8 +61,8 @@ RenderScene::RenderScene(const Scene &scene) : scene_(&scene) {
 }
 
 size_t RenderScene::pick_light(double u, double *probability) const {
-    const size_t i = std::min<size_t>(
-        std::upper_bound(light_cdf_.begin(), light_cdf_.end(), u) - light_cdf_.begin(), lights_.size() - 1);
+    const size_t i = std::min<size_t>(std::upper_bound(light_cdf_.begin(), light_cdf_.end(), u) - light_cdf_.begin(),
+                                      lights_.size() - 1);
     *probability = light_cdf_[i] - (i > 0 ? light_cdf_[i - 1] : 0.0);
     return i;
 }

@@ -18,11 +18,11 @@ namespace ppm {
 // shading frame. Directions in `frame` are local; `wo` points back along the arriving ray.
 struct SurfacePoint {
     ppm_hit hit;
-    Vec3 p, ng;     // ng as stored (not flipped)
-    Frame frame;    // z = shading normal
-    Vec3 wo_local;  // unit
+    Vec3 p, ng;    // ng as stored (not flipped)
+    Frame frame;   // z = shading normal
+    Vec3 wo_local; // unit
     Bsdf bsdf;
-    Rgb emitted;    // radiance the surface emits towards wo (area lights, front side)
+    Rgb emitted; // radiance the surface emits towards wo (area lights, front side)
 };
 
 class RenderScene {
@@ -59,7 +59,7 @@ private:
     const Scene *scene_;
     std::vector<Material> geometry_materials_; // one per geometry
     std::vector<Light> lights_;
-    std::vector<double> light_cdf_;            // cumulative selection probabilities
+    std::vector<double> light_cdf_; // cumulative selection probabilities
     Rgb total_power_;
 };
 

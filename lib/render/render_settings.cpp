@@ -9,9 +9,8 @@ namespace ppm {
 
 namespace {
 
-const char *const kKeys =
-    "mode, photons_per_pass, alpha, initial_radius, initial_radius_pixels, max_depth, seed, "
-    "hit_point_search, direct_lighting";
+const char *const kKeys = "mode, photons_per_pass, alpha, initial_radius, initial_radius_pixels, max_depth, seed, "
+                          "hit_point_search, direct_lighting";
 
 // The type of a known key with its article, or nullptr.
 const char *type_of(const std::string &key) {
@@ -27,8 +26,7 @@ const char *type_of(const std::string &key) {
     if (const char *actual = type_of(key))
         invalid_argument("unknown " + std::string(type) + " render setting '" + key + "': '" + key + "' is " + actual +
                          " setting");
-    invalid_argument("unknown " + std::string(type) + " render setting '" + key + "' (settings: " +
-                     kKeys + ")");
+    invalid_argument("unknown " + std::string(type) + " render setting '" + key + "' (settings: " + kKeys + ")");
 }
 
 void require_not_started(const std::string &key, bool started) {
@@ -44,7 +42,8 @@ void RenderSettings::set_int(const std::string &key, std::int64_t value, bool st
         photons_per_pass = static_cast<std::uint64_t>(value);
     } else if (key == "max_depth") {
         if (value < 1 || value > kMaxDepthLimit)
-            invalid_argument("max_depth must be in 1 .. " + std::to_string(kMaxDepthLimit) + ", not " + std::to_string(value));
+            invalid_argument("max_depth must be in 1 .. " + std::to_string(kMaxDepthLimit) + ", not " +
+                             std::to_string(value));
         max_depth = static_cast<int>(value);
     } else if (key == "seed") {
         require_not_started(key, started);
@@ -61,7 +60,8 @@ void RenderSettings::set_int(const std::string &key, std::int64_t value, bool st
 }
 
 void RenderSettings::set_double(const std::string &key, double value, bool started) {
-    if (!std::isfinite(value)) invalid_argument("render setting '" + key + "' must be finite, not " + format_number(value));
+    if (!std::isfinite(value))
+        invalid_argument("render setting '" + key + "' must be finite, not " + format_number(value));
     if (key == "alpha") {
         if (!(value > 0 && value <= 1)) invalid_argument("alpha must be in (0, 1], not " + format_number(value));
         alpha = value;
@@ -87,13 +87,19 @@ void RenderSettings::set_double(const std::string &key, double value, bool start
 void RenderSettings::set_string(const std::string &key, const std::string &value, bool started) {
     if (key == "mode") {
         require_not_started(key, started);
-        if (value == "sppm") mode = Mode::Sppm;
-        else if (value == "ppm") mode = Mode::Ppm;
-        else invalid_argument("mode must be \"sppm\" or \"ppm\", not \"" + value + "\"");
+        if (value == "sppm")
+            mode = Mode::Sppm;
+        else if (value == "ppm")
+            mode = Mode::Ppm;
+        else
+            invalid_argument("mode must be \"sppm\" or \"ppm\", not \"" + value + "\"");
     } else if (key == "hit_point_search") {
-        if (value == "grid") search = Search::Grid;
-        else if (value == "kdtree") search = Search::KdTree;
-        else invalid_argument("hit_point_search must be \"grid\" or \"kdtree\", not \"" + value + "\"");
+        if (value == "grid")
+            search = Search::Grid;
+        else if (value == "kdtree")
+            search = Search::KdTree;
+        else
+            invalid_argument("hit_point_search must be \"grid\" or \"kdtree\", not \"" + value + "\"");
     } else {
         unknown(key, "string");
     }

@@ -49,12 +49,12 @@ namespace ppm {
 struct VisiblePoint {
     bool valid = false;
     Vec3 p;
-    Vec3 normal;      // geometric normal on the camera's side: photons from behind are rejected
+    Vec3 normal; // geometric normal on the camera's side: photons from behind are rejected
     double p_error = 0;
-    Frame frame;      // shading frame
+    Frame frame; // shading frame
     Vec3 wo_local;
-    Bsdf bsdf;        // black until a point is stored
-    Rgb weight;       // camera path throughput up to this point
+    Bsdf bsdf;  // black until a point is stored
+    Rgb weight; // camera path throughput up to this point
     double initial_r2 = 0;
 };
 
@@ -124,10 +124,10 @@ private:
     // SPPM returns the bounds of the hit points it stored (measured while they are in the
     // cache); PPM's fixed points are stored and measured by build_search().
     std::optional<HitPointBounds> eye_pass(std::uint32_t pass);
-    void init_pixel_slots(); // SPPM: one slot per pixel, statistics zero
-    void init_ppm_slots();   // PPM: the first eye pass's split paths, traced in parallel
+    void init_pixel_slots();              // SPPM: one slot per pixel, statistics zero
+    void init_ppm_slots();                // PPM: the first eye pass's split paths, traced in parallel
     std::string film_description() const; // "the film of W x H pixels", for messages
-    double flux_scale() const; // for the FluxAccumulator
+    double flux_scale() const;            // for the FluxAccumulator
     void photon_pass(std::uint32_t pass);
     void direct_pass(std::uint32_t pass); // PPM: direct light again at the fixed points
     // The slot's hit point and gather data for this pass (absent unless vp.valid).
@@ -145,17 +145,16 @@ private:
     // From the camera ray's hit (sp, if found) through mirrors and glass to the visible point
     // (vp, left invalid if none); returns the emission seen on the way. sp ends as vp's hit.
     Rgb follow_sppm_path(CounterRng &rng, ppm_ray ray, SurfacePoint &sp, bool found, VisiblePoint &vp) const;
-    template <class Emit>
-    void trace_split_path(const ppm_ray &ray, const ppm_hit *leaving, Rgb weight, int depth, double length,
-                          int &budget, std::uint32_t pixel, Emit &&emit);
+    template <class Emit> void trace_split_path(const ppm_ray &ray, const ppm_hit *leaving, Rgb weight, int depth,
+                                                double length, int &budget, std::uint32_t pixel, Emit &&emit);
     void add_direct_light(const VisiblePoint *vps, const ppm_hit *const *at, CounterRng *rngs, std::uint32_t count,
                           Rgb *direct) const;
     VisiblePoint make_visible_point(const SurfacePoint &sp, const Vec3 &ray_dir, const Rgb &weight,
                                     double path_length) const;
     double footprint_r2(double path_length) const;
     // Throws PARSE, naming the slot and field, for statistics no render could have made.
-    void check_statistics(const std::string &path, const std::vector<PixelStatistics> &stats,
-                          std::uint64_t passes, std::uint64_t emitted) const;
+    void check_statistics(const std::string &path, const std::vector<PixelStatistics> &stats, std::uint64_t passes,
+                          std::uint64_t emitted) const;
     // Photon paths (photon_pass.cpp).
     void trace_photon(std::uint64_t index, std::uint32_t pass, std::vector<PhotonHit> &hits) const;
     void gather_sorted();
@@ -177,9 +176,9 @@ private:
     // pass; SPPM stores its points straight into hit_points_ and gather_).
     std::vector<VisiblePoint> visible_;
     std::vector<Rgb> pass_direct_;
-    std::vector<Rgb> fixed_emitted_; // PPM: emission seen along each split path (constant)
-    std::vector<HitPoint> hit_points_;    // per slot: position and radius (absent: no point) ...
-    std::vector<GatherPoint> gather_;      // ... and what deposit() needs of it
+    std::vector<Rgb> fixed_emitted_;   // PPM: emission seen along each split path (constant)
+    std::vector<HitPoint> hit_points_; // per slot: position and radius (absent: no point) ...
+    std::vector<GatherPoint> gather_;  // ... and what deposit() needs of it
     std::size_t present_hit_points_ = 0;
     HitPointGrid grid_;
     HitPointTree tree_;
@@ -189,15 +188,15 @@ private:
     tbb::enumerable_thread_specific<std::vector<PhotonHit>> thread_hits_;
     std::vector<std::vector<PhotonHit> *> batch_parts_; // the non-empty thread buffers ...
     std::vector<std::size_t> batch_part_starts_;        // ... and the index of each one's first photon
-    std::vector<std::uint64_t> batch_order_; // Morton key << index bits | index
+    std::vector<std::uint64_t> batch_order_;            // Morton key << index bits | index
 
     std::atomic<std::uint64_t> passes_{0};
     std::atomic<std::uint64_t> photons_emitted_{0};
     // Atomic like the counters above: a progress display may read them during a pass.
     std::atomic<double> last_eye_seconds_{0}, last_photon_seconds_{0}, last_search_build_seconds_{0};
     std::atomic<bool> cancel_requested_{false};
-    std::mutex pass_mutex_;           // one pass at a time
-    mutable std::mutex stats_mutex_;  // readers against the end-of-pass update
+    std::mutex pass_mutex_;          // one pass at a time
+    mutable std::mutex stats_mutex_; // readers against the end-of-pass update
 };
 
 } // namespace ppm

@@ -20,9 +20,24 @@ struct Rgb {
     Rgb operator*(const Rgb &o) const { return {r * o.r, g * o.g, b * o.b}; }
     Rgb operator*(double s) const { return {r * s, g * s, b * s}; }
     Rgb operator/(double s) const { return {r / s, g / s, b / s}; }
-    Rgb &operator+=(const Rgb &o) { r += o.r; g += o.g; b += o.b; return *this; }
-    Rgb &operator*=(const Rgb &o) { r *= o.r; g *= o.g; b *= o.b; return *this; }
-    Rgb &operator*=(double s) { r *= s; g *= s; b *= s; return *this; }
+    Rgb &operator+=(const Rgb &o) {
+        r += o.r;
+        g += o.g;
+        b += o.b;
+        return *this;
+    }
+    Rgb &operator*=(const Rgb &o) {
+        r *= o.r;
+        g *= o.g;
+        b *= o.b;
+        return *this;
+    }
+    Rgb &operator*=(double s) {
+        r *= s;
+        g *= s;
+        b *= s;
+        return *this;
+    }
 
     double mean() const { return (r + g + b) / 3.0; }
     double max() const { return std::max(r, std::max(g, b)); }

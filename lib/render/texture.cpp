@@ -16,9 +16,7 @@
 
 namespace ppm {
 
-double srgb_to_linear(double c) {
-    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
+double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 
 namespace {
 
@@ -34,8 +32,7 @@ bool is_srgb_encoded(const OIIO::ImageSpec &spec) {
         colorspace_is(colorspace, "lin_srgb"))
         return false;
     const OIIO::TypeDesc::BASETYPE base = static_cast<OIIO::TypeDesc::BASETYPE>(spec.format.basetype);
-    return base != OIIO::TypeDesc::FLOAT && base != OIIO::TypeDesc::HALF &&
-           base != OIIO::TypeDesc::DOUBLE;
+    return base != OIIO::TypeDesc::FLOAT && base != OIIO::TypeDesc::HALF && base != OIIO::TypeDesc::DOUBLE;
 }
 
 // OpenImageIO 2.4's PNG reader, on a file that ends early, lets libpng print "libpng error:
@@ -52,8 +49,8 @@ void check_png_is_complete(const std::string &path) {
         return;
     const long long size = std::ftell(file.get());
     const auto truncated = [&](const std::string &what) {
-        fail(PPM_ERROR_IO, "texture '" + path + "' is a truncated PNG: " + what + ", the file ends at byte " +
-                               std::to_string(size));
+        fail(PPM_ERROR_IO,
+             "texture '" + path + "' is a truncated PNG: " + what + ", the file ends at byte " + std::to_string(size));
     };
     for (long long offset = 8;;) {
         if (offset + 8 > size || std::fseek(file.get(), static_cast<long>(offset), SEEK_SET) != 0 ||
@@ -61,8 +58,8 @@ void check_png_is_complete(const std::string &path) {
             truncated("no IEND chunk");
         const long long length = static_cast<long long>(header[0]) << 24 | header[1] << 16 | header[2] << 8 | header[3];
         const std::string type(reinterpret_cast<const char *>(header + 4), 4);
-        const bool named = std::all_of(type.begin(), type.end(),
-                                       [](char c) { return std::isalpha(static_cast<unsigned char>(c)); });
+        const bool named =
+            std::all_of(type.begin(), type.end(), [](char c) { return std::isalpha(static_cast<unsigned char>(c)); });
         // Length, type, data and CRC.
         const long long end = offset + 12 + length;
         if (end > size)
@@ -119,8 +116,7 @@ std::shared_ptr<const Texture> Texture::load(const std::string &path) {
     if (!input) fail(PPM_ERROR_IO, "texture '" + path + "': " + OIIO::geterror());
     const OIIO::ImageSpec &spec = input->spec();
     const long long pixels = static_cast<long long>(spec.width) * spec.height;
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-        invalid_argument("texture '" + path + "' is empty");
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) invalid_argument("texture '" + path + "' is empty");
     if (pixels > (1ll << 28))
         invalid_argument("texture '" + path + "' has " + std::to_string(pixels) +
                          " pixels, more than the limit of 2^28");

@@ -42,8 +42,6 @@ inline Vec3 square_to_cosine_hemisphere(double u, double v) {
     square_to_uniform_disk_concentric(u, v, &x, &y);
     return {x, y, std::sqrt(std::max(0.0, 1.0 - x * x - y * y))};
 }
-inline double square_to_cosine_hemisphere_pdf(const Vec3 &w) {
-    return w.z > 0 ? w.z * kInvPi : 0.0;
-}
+inline double square_to_cosine_hemisphere_pdf(const Vec3 &w) { return w.z > 0 ? w.z * kInvPi : 0.0; }
 
 } // namespace ppm

@@ -21,7 +21,7 @@ namespace ppm {
 struct EmbreeFrame {
     Vec3 center;
     double box_padding = 0;
-    double tolerance = 0; // absolute hit tolerance of the scene
+    double tolerance = 0;    // absolute hit tolerance of the scene
     int patch_presplit = 12; // scene setting "patch_presplit": sub-patches per patch edge
 };
 

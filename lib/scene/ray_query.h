@@ -46,16 +46,16 @@ struct RayOrigin {
 struct RayQuery {
     RTCIntersectContext embree; // first member: Embree hands back a pointer to it
 
-    Vec3 org, dir;        // the double ray, world space
-    double tnear = 0;     // accepted hits: t in [tnear, hit.t]
-    double t_shift = 0;   // Embree's ray starts at org + t_shift * dir ...
-    double dir_length = 1; // ... and runs along dir / |dir|: t = t_shift + t_embree / |dir|
+    Vec3 org, dir;                               // the double ray, world space
+    double tnear = 0;                            // accepted hits: t in [tnear, hit.t]
+    double t_shift = 0;                          // Embree's ray starts at org + t_shift * dir ...
+    double dir_length = 1;                       // ... and runs along dir / |dir|: t = t_shift + t_embree / |dir|
     double dir_length2 = 1, inv_dir_length2 = 1; // |dir|^2 and its inverse, for quadrics
-    double tolerance = 0; // absolute, from the scene
+    double tolerance = 0;                        // absolute, from the scene
     bool any_hit = false;
     bool found = false;
-    HitRecord hit;        // best hit so far; hit.t is the current far limit
-    RayOrigin origin;     // where the ray leaves a surface, if known
+    HitRecord hit;                         // best hit so far; hit.t is the current far limit
+    RayOrigin origin;                      // where the ray leaves a surface, if known
     uint32_t tested_geom_id = 0xFFFFFFFEu; // the geometry whose callback runs (user_geometry.h)
 
     // The ray frame for patches, built on first use.
@@ -89,9 +89,7 @@ struct RayQuery {
     }
 
     // Embree's far limit for a double t: rounded up so that no box at t is culled.
-    float embree_tfar(double t) const {
-        return next_float_up(static_cast<float>((t - t_shift) * dir_length));
-    }
+    float embree_tfar(double t) const { return next_float_up(static_cast<float>((t - t_shift) * dir_length)); }
 
 private:
     RayFrame frame_;

@@ -57,15 +57,12 @@ void write_miss(ppm_hit &hit) {
 } // namespace
 
 void validate_ray(const ppm_ray &ray, size_t index) {
-    auto bad = [&](const char *what) {
-        invalid_argument("ray " + std::to_string(index) + ": " + what);
-    };
+    auto bad = [&](const char *what) { invalid_argument("ray " + std::to_string(index) + ": " + what); };
     const Vec3 org = Vec3::from(ray.org), dir = Vec3::from(ray.dir);
     if (!is_finite(org)) bad("origin is not finite");
     if (!is_finite(dir)) bad("direction is not finite");
     const double dir_length2 = length2(dir);
-    if (!(dir_length2 >= DBL_MIN) || !std::isfinite(dir_length2))
-        bad("direction is zero or too large to square");
+    if (!(dir_length2 >= DBL_MIN) || !std::isfinite(dir_length2)) bad("direction is zero or too large to square");
     if (!(ray.tnear >= 0) || !std::isfinite(ray.tnear)) bad("tnear must be finite and >= 0");
     if (!(ray.tfar >= ray.tnear)) bad("tfar must be >= tnear (INFINITY allowed)");
 }
@@ -141,8 +138,7 @@ void Scene::commit() {
         invalid_argument("the scene's bounding box is empty, a point, or not finite");
 
     const Vec3 center = bounds.center();
-    const double radius = std::max(max_abs_component(bounds.lower - center),
-                                   max_abs_component(bounds.upper - center));
+    const double radius = std::max(max_abs_component(bounds.lower - center), max_abs_component(bounds.upper - center));
     // Float rounding of Embree's ray moves it by about 1e-7 of the scene's size; pad boxes by
     // a hundred times that, plus the tolerance within which a hit may be reported.
     frame_.center = center;
@@ -165,7 +161,8 @@ void Scene::commit() {
         }
         assign_mask_bits();
         for (size_t id = 0; id < geometries_.size(); ++id) {
-            if (std::find(direct_sphere_ids_.begin(), direct_sphere_ids_.end(), id) != direct_sphere_ids_.end()) continue;
+            if (std::find(direct_sphere_ids_.begin(), direct_sphere_ids_.end(), id) != direct_sphere_ids_.end())
+                continue;
             RTCGeometry g = geometries_[id]->create_embree(device, frame_);
             context_->check_embree("creating Embree geometry");
             if (!g) fail(PPM_ERROR_OUT_OF_MEMORY, "creating Embree geometry failed");
@@ -225,8 +222,8 @@ void Scene::require_committed(const char *operation) const {
              std::string(operation) + ": the scene is not committed (call ppm_scene_commit after changes)");
 }
 
-bool Scene::start_query(const ppm_ray &ray, bool any_hit, const ppm_hit *leaving, uint32_t toward,
-                        RayQuery &query, RTCRay &embree_ray) const {
+bool Scene::start_query(const ppm_ray &ray, bool any_hit, const ppm_hit *leaving, uint32_t toward, RayQuery &query,
+                        RTCRay &embree_ray) const {
     if (leaving) {
         query.origin.geom_id = leaving->geom_id;
         query.origin.prim_id = leaving->prim_id;
@@ -387,8 +384,7 @@ void Scene::intersect(const ppm_ray *rays, size_t count, ppm_hit *hits) const {
     context_->run([&] {
         tbb::parallel_for(tbb::blocked_range<size_t>(0, count, rays_per_task),
                           [&](const tbb::blocked_range<size_t> &range) {
-                              for (size_t i = range.begin(); i != range.end(); ++i)
-                                  intersect(rays[i], hits[i]);
+                              for (size_t i = range.begin(); i != range.end(); ++i) intersect(rays[i], hits[i]);
                           });
     });
 }

@@ -11,8 +11,7 @@ namespace ppm {
 
 // A ray from hit.p in direction dir whose origin is moved off the surface by twice the hit's
 // error bound along ng, on the side dir points to, so it cannot hit the surface it leaves.
-inline ppm_ray spawn_ray(const Vec3 &p, const Vec3 &ng, double p_error, const Vec3 &dir,
-                         double tfar = INFINITY) {
+inline ppm_ray spawn_ray(const Vec3 &p, const Vec3 &ng, double p_error, const Vec3 &dir, double tfar = INFINITY) {
     const double side = dot(dir, ng) >= 0 ? 1.0 : -1.0;
     const Vec3 org = p + ng * (2 * p_error * side);
     ppm_ray ray;

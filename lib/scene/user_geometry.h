@@ -47,8 +47,7 @@ void user_occluded(const RTCOccludedFunctionNArguments *args) {
 // Bounds callbacks get their data from geometryUserPtr: Embree 3.13 ignores the userPtr of
 // rtcSetGeometryBoundsFunction.
 template <class Data, bool (*Test)(const Data &, unsigned, RayQuery &)>
-RTCGeometry new_user_geometry(RTCDevice device, const Data &data, size_t count,
-                              RTCBoundsFunction bounds) {
+RTCGeometry new_user_geometry(RTCDevice device, const Data &data, size_t count, RTCBoundsFunction bounds) {
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
     if (!geometry) return nullptr;
     rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(count));

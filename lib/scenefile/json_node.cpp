@@ -7,9 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
-#include <cstdio>
 #include <sstream>
 
 namespace ppm {
@@ -192,8 +192,8 @@ double JsonNode::number_in(double low, double high, bool low_open, bool high_ope
     const bool below = high_open ? v < high : v <= high;
     if (!(above && below && std::isfinite(v))) {
         std::ostringstream range;
-        range << "expected a number in " << (low_open ? "(" : "[") << format_number(low) << ", "
-              << format_number(high) << (high_open ? ")" : "]");
+        range << "expected a number in " << (low_open ? "(" : "[") << format_number(low) << ", " << format_number(high)
+              << (high_open ? ")" : "]");
         fail(range.str());
     }
     return v;

@@ -57,7 +57,7 @@ public:
     void require_object() const;
     void allow_only(std::initializer_list<const char *> allowed) const;
     bool has(const char *key) const;
-    JsonNode at(const char *key) const; // fails if missing
+    JsonNode at(const char *key) const;    // fails if missing
     std::vector<std::string> keys() const; // sorted (jsoncpp keeps no file order)
     // Arrays.
     void require_array() const;
@@ -73,7 +73,7 @@ public:
     bool boolean() const;
     std::string string() const;
     std::string one_of(std::initializer_list<const char *> choices) const;
-    std::array<double, 3> vec3() const;             // [x, y, z]
+    std::array<double, 3> vec3() const;                  // [x, y, z]
     std::array<double, 3> color(bool reflectance) const; // number, [r, g, b] or {"type": "rgb", "value": ...}
 
     // Member shortcut with a default.

@@ -80,7 +80,8 @@ std::uint32_t SceneBuilder::add_bsdf(const JsonNode &bsdf) {
     } else if (type == "conductor") {
         check(bsdf, ppm_scene_add_mirror_material(scene_, color.data(), &id));
     } else if (type == "plastic") {
-        check(bsdf, ppm_scene_add_coated_material(scene_, color.data(), ior("int_ior", 1.49), ior("ext_ior", 1.000277), &id));
+        check(bsdf,
+              ppm_scene_add_coated_material(scene_, color.data(), ior("int_ior", 1.49), ior("ext_ior", 1.000277), &id));
     } else {
         check(bsdf, ppm_scene_add_dielectric_material(scene_, ior("int_ior", 1.5046), ior("ext_ior", 1.000277), &id));
     }
@@ -132,11 +133,12 @@ void SceneBuilder::add_emitter(const JsonNode &emitter) {
     emitter.allow_only({"type", "to_world", "intensity", "cutoff_angle", "beam_width"});
     const Affine to_world = parse_transform(emitter.at("to_world"));
     const double cutoff = emitter.has("cutoff_angle") ? emitter.at("cutoff_angle").number_in(0, 90, true, false) : 20.0;
-    const double beam = emitter.has("beam_width") ? emitter.at("beam_width").number_in(0, cutoff, true, false)
-                                                  : cutoff * 0.75;
+    const double beam =
+        emitter.has("beam_width") ? emitter.at("beam_width").number_in(0, cutoff, true, false) : cutoff * 0.75;
     const std::array<double, 3> position = to_array(to_world.point({0, 0, 0}));
     const std::array<double, 3> target = to_array(to_world.point({0, 0, 1}));
-    check(emitter, ppm_scene_add_spot_light(scene_, position.data(), target.data(), intensity.data(), cutoff, beam, nullptr));
+    check(emitter,
+          ppm_scene_add_spot_light(scene_, position.data(), target.data(), intensity.data(), cutoff, beam, nullptr));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -198,7 +200,8 @@ void SceneBuilder::add_shape(const JsonNode &shape) {
         check(filename, ppm_scene_load_obj(scene_, existing_file(filename).c_str(), &geom));
     } else {
         shape.allow_only({"type", "bsdf", "emitter", "to_world", "filename", "patches", "uv_rects"});
-        if (shape.has("filename") == shape.has("patches")) shape.fail("a bezier shape needs either 'filename' or 'patches'");
+        if (shape.has("filename") == shape.has("patches"))
+            shape.fail("a bezier shape needs either 'filename' or 'patches'");
         if (shape.has("filename")) {
             const JsonNode filename = shape.at("filename");
             check(filename, ppm_scene_load_bpt(scene_, existing_file(filename).c_str(), &geom));
@@ -241,8 +244,8 @@ void SceneBuilder::add_shape(const JsonNode &shape) {
         const JsonNode emitter = shape.at("emitter");
         emitter.allow_only({"type", "radiance"});
         emitter.at("type").one_of({"area"});
-        const std::array<double, 3> radiance = emitter.has("radiance") ? emitter.at("radiance").color(false)
-                                                                       : std::array<double, 3>{1, 1, 1};
+        const std::array<double, 3> radiance =
+            emitter.has("radiance") ? emitter.at("radiance").color(false) : std::array<double, 3>{1, 1, 1};
         check(emitter, ppm_scene_set_geometry_emission(scene_, geom, radiance.data()));
     }
 }

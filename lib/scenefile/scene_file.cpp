@@ -12,8 +12,8 @@ namespace {
 // `integrator`: the renderer's settings, checked now by the same code that checks
 // ppm_renderer_set_*, so that an error points into the file.
 void read_integrator(const JsonNode &node, RenderSettings &settings, std::int64_t &passes, double &time) {
-    node.allow_only({"type", "passes", "time", "photons_per_pass", "alpha", "initial_radius",
-                     "initial_radius_pixels", "max_depth", "seed", "hit_point_search", "direct_lighting"});
+    node.allow_only({"type", "passes", "time", "photons_per_pass", "alpha", "initial_radius", "initial_radius_pixels",
+                     "max_depth", "seed", "hit_point_search", "direct_lighting"});
     const auto apply = [&](const JsonNode &value, auto &&set) {
         try {
             set();
@@ -74,8 +74,9 @@ ppm_camera read_sensor(const JsonNode *node) {
             if (film.has("width")) camera.width = static_cast<std::uint32_t>(film.at("width").integer(1, max_side));
             if (film.has("height")) camera.height = static_cast<std::uint32_t>(film.at("height").integer(1, max_side));
             if (static_cast<std::uint64_t>(camera.width) * camera.height > (std::uint64_t(1) << 28))
-                film.fail("width x height = " + std::to_string(static_cast<std::uint64_t>(camera.width) * camera.height) +
-                          " pixels exceeds the limit of 2^28");
+                film.fail(
+                    "width x height = " + std::to_string(static_cast<std::uint64_t>(camera.width) * camera.height) +
+                    " pixels exceeds the limit of 2^28");
         }
     }
     const Vec3 origin = to_world.point({0, 0, 0});

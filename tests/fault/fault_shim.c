@@ -164,9 +164,7 @@ static int check_fd(int op, int fd, size_t *size) {
     return check(op, path, size);
 }
 
-static int check_stream(int op, FILE *stream, size_t *size) {
-    return stream ? check_fd(op, fileno(stream), size) : 0;
-}
+static int check_stream(int op, FILE *stream, size_t *size) { return stream ? check_fd(op, fileno(stream), size) : 0; }
 
 /* After a write cut short by the byte budget: in kill mode the process dies with the first
  * part written, as a crash in the middle of a write leaves it. */

@@ -16,9 +16,7 @@ namespace {
 
 std::string temp_dir;
 
-int remove_entry(const char *path, const struct stat *, int, struct FTW *) {
-    return std::remove(path);
-}
+int remove_entry(const char *path, const struct stat *, int, struct FTW *) { return std::remove(path); }
 
 void remove_temp_dir() {
     if (!temp_dir.empty()) nftw(temp_dir.c_str(), remove_entry, 8, FTW_DEPTH | FTW_PHYS);
@@ -144,8 +142,8 @@ void check_geometry_scene(ppm_scene scene) {
     check(ppm_scene_intersect(scene, rays.data(), rays.size(), hits.data()), "ppm_scene_intersect");
     for (const ppm_hit &hit : hits)
         if (hit.geom_id != PPM_INVALID_ID &&
-            (!std::isfinite(hit.t) || !all_finite(hit.p, 3) || !all_finite(hit.ng, 3) ||
-             !all_finite(hit.ns, 3) || !std::isfinite(hit.u) || !std::isfinite(hit.v)))
+            (!std::isfinite(hit.t) || !all_finite(hit.p, 3) || !all_finite(hit.ng, 3) || !all_finite(hit.ns, 3) ||
+             !std::isfinite(hit.u) || !std::isfinite(hit.v)))
             die("a hit has a NaN or infinite field");
 
     const double light_intensity[3] = {intensity, intensity, intensity};

@@ -17,11 +17,10 @@ double test_rng_uniform(test_rng *rng) {
     return (double)(z >> 11) * (1.0 / 9007199254740992.0);
 }
 
-void _assert_close(double a, double b, double tolerance, const char *a_text, const char *b_text,
-                   const char *file, int line) {
+void _assert_close(double a, double b, double tolerance, const char *a_text, const char *b_text, const char *file,
+                   int line) {
     if (fabs(a - b) <= tolerance) return;
-    print_error("%s = %.17g and %s = %.17g differ by %.3g > %.3g\n", a_text, a, b_text, b,
-                fabs(a - b), tolerance);
+    print_error("%s = %.17g and %s = %.17g differ by %.3g > %.3g\n", a_text, a, b_text, b, fabs(a - b), tolerance);
     _fail(file, line);
 }
 

@@ -2,9 +2,9 @@
 #ifndef PPM_TEST_SUPPORT_H
 #define PPM_TEST_SUPPORT_H
 
+#include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
-#include <setjmp.h>
 #include <stdint.h>
 
 #ifdef __cplusplus
@@ -29,10 +29,10 @@ typedef struct test_rng {
 double test_rng_uniform(test_rng *rng); /* [0, 1) */
 
 /* Asserts |a - b| <= tolerance with a message naming both values. */
-#define assert_close(a, b, tolerance) \
+#define assert_close(a, b, tolerance)                                                                                  \
     _assert_close((double)(a), (double)(b), (double)(tolerance), #a, #b, __FILE__, __LINE__)
-void _assert_close(double a, double b, double tolerance, const char *a_text, const char *b_text,
-                   const char *file, int line);
+void _assert_close(double a, double b, double tolerance, const char *a_text, const char *b_text, const char *file,
+                   int line);
 
 /* A new empty folder $TMPDIR/<prefix>XXXXXX (TMPDIR defaults to /tmp); its path goes into out.
  * Returns 0, or -1 if it cannot be made. */

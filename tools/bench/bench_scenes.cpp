@@ -64,21 +64,20 @@ void build_smallppm(ppm_scene s, ppm_camera &camera, int w, int h) {
     const double origin[3] = {50, 48, 295.6}, target[3] = {50, 48 - 0.042612, 294.6}, up[3] = {0, 1, 0};
     set_camera(camera, origin, target, up, 2 * std::atan(0.5 * 0.5135 * w / h) * 180 / 3.14159265358979323846, w, h);
     camera.near_clip = 140; // smallppm starts its rays 140 units out, past the front wall (z = 170)
-
 }
 
 // z up; box [-5, 5] x [-5, 5] x [0, 10] open towards the camera at -y.
 void build_teapot_glass(ppm_scene s, ppm_camera &camera, const std::string &teapot, int w, int h) {
     const uint32_t white = diffuse(s, .75, .75, .75), red = diffuse(s, .75, .2, .2), green = diffuse(s, .2, .6, .25);
     const double floor_o[3] = {-5, -5, 0}, x10[3] = {10, 0, 0}, y10[3] = {0, 10, 0}, z10[3] = {0, 0, 10};
-    quad(s, floor_o, x10, y10, white);                                      // floor
+    quad(s, floor_o, x10, y10, white); // floor
     const double ceil_o[3] = {-5, -5, 10};
-    quad(s, ceil_o, y10, x10, white);                                       // ceiling
+    quad(s, ceil_o, y10, x10, white); // ceiling
     const double back_o[3] = {-5, 5, 0};
-    quad(s, back_o, z10, x10, white);                                       // back
-    quad(s, floor_o, y10, z10, red);                                        // left (x = -5)
+    quad(s, back_o, z10, x10, white); // back
+    quad(s, floor_o, y10, z10, red);  // left (x = -5)
     const double right_o[3] = {5, -5, 0};
-    quad(s, right_o, z10, y10, green);                                      // right (x = 5)
+    quad(s, right_o, z10, y10, green); // right (x = 5)
     // Area light: a 3 x 3 square just under the ceiling, facing down.
     const double light_o[3] = {-1.5, -1.5, 9.99}, lx[3] = {3, 0, 0}, ly[3] = {0, 3, 0};
     const uint32_t light = quad(s, light_o, ly, lx, white);
@@ -96,8 +95,8 @@ void build_teapot_glass(ppm_scene s, ppm_camera &camera, const std::string &teap
 
 } // namespace
 
-BenchScene build_bench_scene(ppm_context context, const std::string &name, const std::string &teapot_path,
-                             int width, int height) {
+BenchScene build_bench_scene(ppm_context context, const std::string &name, const std::string &teapot_path, int width,
+                             int height) {
     BenchScene b;
     check(ppm_scene_create(context, &b.scene), "ppm_scene_create");
     if (name == "smallppm")

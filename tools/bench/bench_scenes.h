@@ -17,7 +17,7 @@ struct BenchScene {
 };
 
 // Throws std::runtime_error for an unknown name or a failed call. `teapot_path` is the .bpt.
-BenchScene build_bench_scene(ppm_context context, const std::string &name, const std::string &teapot_path,
-                             int width, int height);
+BenchScene build_bench_scene(ppm_context context, const std::string &name, const std::string &teapot_path, int width,
+                             int height);
 
 } // namespace bench

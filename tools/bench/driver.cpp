@@ -13,8 +13,7 @@ namespace {
 
 size_t mismatches(const Trace &a, const Trace &b) {
     size_t count = 0;
-    for (size_t i = 0; i < a.size(); ++i)
-        count += !(a.t[i] == b.t[i] || (std::isinf(a.t[i]) && std::isinf(b.t[i])));
+    for (size_t i = 0; i < a.size(); ++i) count += !(a.t[i] == b.t[i] || (std::isinf(a.t[i]) && std::isinf(b.t[i])));
     return count;
 }
 

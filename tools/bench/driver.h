@@ -29,7 +29,7 @@ struct MethodResult {
 };
 
 struct DriverOptions {
-    int threads = 1;        // of the all-thread run; 1 skips it
+    int threads = 1; // of the all-thread run; 1 skips it
     double min_seconds = 0.1;
     double diagonal = 1;
 };

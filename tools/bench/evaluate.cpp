@@ -54,8 +54,8 @@ double maximum(const std::vector<double> &values) {
 
 } // namespace
 
-Outcome judge(const Trace &trace, const std::vector<ppm_ray> &rays, const Truth &truth, size_t i,
-              double diagonal, double *dt_out, const TruthRoot **match_out) {
+Outcome judge(const Trace &trace, const std::vector<ppm_ray> &rays, const Truth &truth, size_t i, double diagonal,
+              double *dt_out, const TruthRoot **match_out) {
     const TruthKind kind = truth.kind[i];
     if (kind == TruthKind::undecided) return Outcome::undecided;
     if (!std::isfinite(trace.t[i])) {

@@ -28,7 +28,7 @@ struct Stats {
     size_t rays = 0, undecided = 0;
     size_t reference_hits = 0, ambiguous = 0; // truth kinds
     size_t hits = 0, misses = 0, false_hits = 0, matched = 0;
-    size_t over_tolerance = 0; // matched with |dt| above the given accuracy bound
+    size_t over_tolerance = 0;                     // matched with |dt| above the given accuracy bound
     double dt_median = 0, dt_p999 = 0, dt_max = 0; // |dt| / diagonal over matched hits
     double ng_median = 0, ng_p999 = 0, ng_max = 0; // geometric normal error, degrees
     double ns_median = 0, ns_max = 0;              // shading normal error, degrees
@@ -41,8 +41,8 @@ struct Stats {
 // Judges ray i of `rays` (unit directions); on a hit, *dt (relative to the diagonal) and
 // *match are set to the hit's distance from the reference root it is attributed to and that
 // root.
-Outcome judge(const Trace &trace, const std::vector<ppm_ray> &rays, const Truth &truth, size_t i,
-              double diagonal, double *dt = nullptr, const TruthRoot **match = nullptr);
+Outcome judge(const Trace &trace, const std::vector<ppm_ray> &rays, const Truth &truth, size_t i, double diagonal,
+              double *dt = nullptr, const TruthRoot **match = nullptr);
 
 // `accuracy` (relative to the diagonal; 0 = none) counts matched hits with a larger |dt|.
 Stats evaluate(const Trace &trace, const std::vector<ppm_ray> &rays, const Truth &truth, double diagonal,

@@ -24,8 +24,8 @@ bool integer_list(const std::string &option, const std::string &value, long long
     return parse_integer_list(value, low, high, out) || bad(option, value, expected);
 }
 
-bool double_list(const std::string &option, const std::string &value, double low, double high,
-                 std::vector<double> &out, const char *expected) {
+bool double_list(const std::string &option, const std::string &value, double low, double high, std::vector<double> &out,
+                 const char *expected) {
     out.clear();
     if (value == "none") return true;
     for (const std::string &item : split_list(value)) {
@@ -36,13 +36,11 @@ bool double_list(const std::string &option, const std::string &value, double low
     return true;
 }
 
-template <size_t N>
-bool name_list(const std::string &option, const std::string &value, const char *const (&known)[N],
-               std::vector<std::string> &out, const char *expected) {
+template <size_t N> bool name_list(const std::string &option, const std::string &value, const char *const (&known)[N],
+                                   std::vector<std::string> &out, const char *expected) {
     out = split_list(value);
     for (const std::string &name : out)
-        if (std::find(std::begin(known), std::end(known), name) == std::end(known))
-            return bad(option, value, expected);
+        if (std::find(std::begin(known), std::end(known), name) == std::end(known)) return bad(option, value, expected);
     if (out.empty()) return bad(option, value, expected);
     return true;
 }
@@ -57,13 +55,11 @@ bool apply(const std::string &option, const std::string &value, IntersectOptions
     }
     long long n = 0;
     if (option == "--sets") {
-        return name_list(option, value, known_sets, o.sets,
-                         "a list of random, camera, grazing, seams, poles, leaving");
+        return name_list(option, value, known_sets, o.sets, "a list of random, camera, grazing, seams, poles, leaving");
     } else if (option == "--angles") {
         return double_list(option, value, 1e-12, 1.5, o.angles, "a list like 1e-3,1e-6 of angles in (0, 1.5] rad");
     } else if (option == "--methods") {
-        return name_list(option, value, known_methods, o.methods,
-                         "a list of exact, newton, embree, adaptive, cgal");
+        return name_list(option, value, known_methods, o.methods, "a list of exact, newton, embree, adaptive, cgal");
     } else if (option == "--tolerances") {
         return double_list(option, value, 1e-14, 1e-2, o.tolerances,
                            "a list like 1e-6,1e-9 of scene tolerances in [1e-14, 1e-2]");
@@ -118,50 +114,50 @@ bool IntersectOptions::has_set(const std::string &name) const {
 void print_intersect_usage(std::FILE *out) {
     const IntersectOptions d;
     std::fprintf(out,
-        "usage: ppm-bench intersect [options]\n"
-        "Speed against accuracy of ray / Bezier patch intersection: libppm's exact intersector at\n"
-        "several tolerances, naive Newton methods, and tessellations traced by Embree and CGAL, all\n"
-        "judged ray by ray against an independent long-double reference intersector, on one thread\n"
-        "and on all threads.\n"
-        "  --bpt FILE            patches to load (default %s)\n"
-        "  --rays N              random rays (default %zu); grazing (per angle), seam and leaving\n"
-        "                        sets get N/4 rays each, poles N/10 (at least 1 each; 0 skips them)\n"
-        "  --width W --height H  camera rays (default %d x %d; 0 x 0 skips the set)\n"
-        "  --sets LIST           any of random,camera,grazing,seams,poles,leaving (default all)\n"
-        "  --angles LIST         grazing angles in radians (default 1e-2,1e-3,1e-4,1e-6)\n"
-        "  --methods LIST        any of exact,newton,embree,adaptive,cgal (default all; cgal if built)\n"
-        "  --tolerances LIST     exact method scene tolerances (default 1e-3,1e-6,1e-9,1e-12)\n"
-        "  --presplits LIST      exact method at tolerance 1e-9 with these scene patch_presplit values,\n"
-        "                        methods exact-presplit-N (default 1,2,4,12; 'none' for none)\n"
-        "  --grids LIST          uniform grids traced by Embree (default 8,16,32,64,128)\n"
-        "  --cgal-grids LIST     uniform grids traced by CGAL (default 8,32,128)\n"
-        "  --adaptive LIST       adaptive meshes traced by Embree, tolerance / diagonal\n"
-        "                        (default 1e-3,1e-4,1e-5); 'none' for no mesh\n"
-        "  --cgal-adaptive LIST  adaptive meshes traced by CGAL (default 1e-4)\n"
-        "  --threads N           threads of the all-thread runs (default 0: all hardware threads;\n"
-        "                        1: single-thread runs only)\n"
-        "  --min-time S          trace each set again until S seconds have passed (default %g)\n"
-        "  --seed S              seed of all random ray sets (default %llu)\n"
-        "  --list K              disagreements with the reference listed per set (default %zu)\n"
-        "  --explain METHOD      whose disagreements to list, e.g. newton-r16 (default: exact-1e-9, or\n"
-        "                        the first exact method)\n"
-        "  --out DIR             directory of the outputs (created; default: current directory)\n"
-        "  --csv FILE            results, one row per ray set and method (default DIR/bench-results.csv)\n"
-        "  --stability-md FILE   markdown tables of miss and false-hit rates (default DIR/stability.md\n"
-        "                        with --out)\n"
-        "  --summary-md FILE     markdown summary table (default DIR/summary.md with --out)\n"
-        "  --chart DIR           write DIR/intersect.png and .svg with tools/bench/plot_bench.py\n"
-        "                        (needs python3 with matplotlib)\n"
-        "  -h, --help            this text\n",
-        d.bpt_path.c_str(), d.rays, d.width, d.height, d.min_seconds, (unsigned long long)d.seed,
-        d.max_listed);
+                 "usage: ppm-bench intersect [options]\n"
+                 "Speed against accuracy of ray / Bezier patch intersection: libppm's exact intersector at\n"
+                 "several tolerances, naive Newton methods, and tessellations traced by Embree and CGAL, all\n"
+                 "judged ray by ray against an independent long-double reference intersector, on one thread\n"
+                 "and on all threads.\n"
+                 "  --bpt FILE            patches to load (default %s)\n"
+                 "  --rays N              random rays (default %zu); grazing (per angle), seam and leaving\n"
+                 "                        sets get N/4 rays each, poles N/10 (at least 1 each; 0 skips them)\n"
+                 "  --width W --height H  camera rays (default %d x %d; 0 x 0 skips the set)\n"
+                 "  --sets LIST           any of random,camera,grazing,seams,poles,leaving (default all)\n"
+                 "  --angles LIST         grazing angles in radians (default 1e-2,1e-3,1e-4,1e-6)\n"
+                 "  --methods LIST        any of exact,newton,embree,adaptive,cgal (default all; cgal if built)\n"
+                 "  --tolerances LIST     exact method scene tolerances (default 1e-3,1e-6,1e-9,1e-12)\n"
+                 "  --presplits LIST      exact method at tolerance 1e-9 with these scene patch_presplit values,\n"
+                 "                        methods exact-presplit-N (default 1,2,4,12; 'none' for none)\n"
+                 "  --grids LIST          uniform grids traced by Embree (default 8,16,32,64,128)\n"
+                 "  --cgal-grids LIST     uniform grids traced by CGAL (default 8,32,128)\n"
+                 "  --adaptive LIST       adaptive meshes traced by Embree, tolerance / diagonal\n"
+                 "                        (default 1e-3,1e-4,1e-5); 'none' for no mesh\n"
+                 "  --cgal-adaptive LIST  adaptive meshes traced by CGAL (default 1e-4)\n"
+                 "  --threads N           threads of the all-thread runs (default 0: all hardware threads;\n"
+                 "                        1: single-thread runs only)\n"
+                 "  --min-time S          trace each set again until S seconds have passed (default %g)\n"
+                 "  --seed S              seed of all random ray sets (default %llu)\n"
+                 "  --list K              disagreements with the reference listed per set (default %zu)\n"
+                 "  --explain METHOD      whose disagreements to list, e.g. newton-r16 (default: exact-1e-9, or\n"
+                 "                        the first exact method)\n"
+                 "  --out DIR             directory of the outputs (created; default: current directory)\n"
+                 "  --csv FILE            results, one row per ray set and method (default DIR/bench-results.csv)\n"
+                 "  --stability-md FILE   markdown tables of miss and false-hit rates (default DIR/stability.md\n"
+                 "                        with --out)\n"
+                 "  --summary-md FILE     markdown summary table (default DIR/summary.md with --out)\n"
+                 "  --chart DIR           write DIR/intersect.png and .svg with tools/bench/plot_bench.py\n"
+                 "                        (needs python3 with matplotlib)\n"
+                 "  -h, --help            this text\n",
+                 d.bpt_path.c_str(), d.rays, d.width, d.height, d.min_seconds, (unsigned long long)d.seed,
+                 d.max_listed);
 }
 
 ParseResult parse_intersect_args(int argc, char **argv, int first, IntersectOptions &options) {
-    const ParseResult read = read_options(command, argc, argv, first, [&](const std::string &option,
-                                                                          const std::string &value) {
-        return apply(option, value, options);
-    });
+    const ParseResult read =
+        read_options(command, argc, argv, first, [&](const std::string &option, const std::string &value) {
+            return apply(option, value, options);
+        });
     if (read != ParseResult::run) return read;
     if ((options.width == 0) != (options.height == 0)) {
         std::fprintf(stderr, "%s: --width and --height must both be 0 or both positive\n", command);

@@ -34,8 +34,10 @@ std::vector<RaySet> make_ray_sets(const IntersectOptions &o, const Bounds &box, 
                                   int threads) {
     std::vector<RaySet> sets;
     auto add = [&](RaySet set) {
-        if (set.size() > 0) sets.push_back(std::move(set));
-        else std::fprintf(stderr, "ray set %s: no rays (%s)\n", set.name.c_str(), set.description.c_str());
+        if (set.size() > 0)
+            sets.push_back(std::move(set));
+        else
+            std::fprintf(stderr, "ray set %s: no rays (%s)\n", set.name.c_str(), set.description.c_str());
     };
     if (o.has_set("random") && o.rays > 0) add(random_rays(box, o.rays, o.seed));
     if (o.has_set("camera") && o.width > 0) add(camera_rays(box, o.width, o.height));
@@ -85,8 +87,7 @@ std::string in_dir(const std::string &dir, const char *name) { return dir.empty(
 // runs. Keeps the one-thread traces of the exact method at the default tolerance (or the
 // first exact one) for the disagreement listing.
 std::vector<MethodResult> run_methods(const IntersectOptions &o, const std::vector<double> &patches,
-                                      const std::vector<RaySet> &sets, const DriverOptions &driver,
-                                      double diagonal) {
+                                      const std::vector<RaySet> &sets, const DriverOptions &driver, double diagonal) {
     std::vector<MethodResult> results;
     // The method whose traces are kept for the disagreement listing.
     std::string explain = o.explain;
@@ -125,8 +126,10 @@ std::vector<MethodResult> run_methods(const IntersectOptions &o, const std::vect
             }
         specs.push_back({grid, tolerance, with_embree, with_cgal});
     };
-    if (embree) for (int n : o.grids) add_spec(n, 0, true, false);
-    if (adaptive) for (double t : o.adaptive) add_spec(0, t, true, false);
+    if (embree)
+        for (int n : o.grids) add_spec(n, 0, true, false);
+    if (adaptive)
+        for (double t : o.adaptive) add_spec(0, t, true, false);
     if (cgal) {
         for (int n : o.cgal_grids) add_spec(n, 0, false, true);
         for (double t : o.cgal_adaptive) add_spec(0, t, false, true);
@@ -206,7 +209,8 @@ int run_intersect_command(int argc, char **argv, int first) {
             if (!run.traces.empty()) print_suspects(stdout, sets, run, diagonal, options.max_listed);
 
         make_directory(options.out_dir);
-        const std::string csv = options.csv_path.empty() ? in_dir(options.out_dir, "bench-results.csv") : options.csv_path;
+        const std::string csv =
+            options.csv_path.empty() ? in_dir(options.out_dir, "bench-results.csv") : options.csv_path;
         write_csv(csv, sets, runs);
         std::fprintf(stderr, "wrote %s\n", csv.c_str());
         std::string stability_path = options.stability_path, summary_path = options.summary_path;

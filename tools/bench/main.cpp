@@ -11,17 +11,16 @@
 namespace {
 
 void print_usage(std::FILE *out) {
-    std::fprintf(out,
-                 "usage: ppm-bench <command> [options]\n"
-                 "commands:\n"
-                 "  intersect   speed against accuracy of patch intersection: libppm, naive Newton,\n"
-                 "              Embree and CGAL on tessellations, against a long-double reference\n"
-                 "  render      renderer speed: eye pass time, photon paths/s, memory\n"
-                 "  targets     the exact intersector's speed and memory targets against Embree and CGAL\n"
-                 "              on a uniform mesh, from medians of interleaved timing rounds\n"
-                 "options:\n"
-                 "  -h, --help  this text ('ppm-bench <command> -h' for a command's options)\n"
-                 "  --version   print the libppm version\n");
+    std::fprintf(out, "usage: ppm-bench <command> [options]\n"
+                      "commands:\n"
+                      "  intersect   speed against accuracy of patch intersection: libppm, naive Newton,\n"
+                      "              Embree and CGAL on tessellations, against a long-double reference\n"
+                      "  render      renderer speed: eye pass time, photon paths/s, memory\n"
+                      "  targets     the exact intersector's speed and memory targets against Embree and CGAL\n"
+                      "              on a uniform mesh, from medians of interleaved timing rounds\n"
+                      "options:\n"
+                      "  -h, --help  this text ('ppm-bench <command> -h' for a command's options)\n"
+                      "  --version   print the libppm version\n");
 }
 
 } // namespace

@@ -31,14 +31,14 @@ struct Trace {
 
 // The part of a method's description the reports need.
 struct MethodInfo {
-    std::string name;       // "exact-1e-9", "embree-N32", "newton-r16", ...
-    std::string family;     // exact, newton, embree-uniform, embree-adaptive, cgal-uniform, cgal-adaptive
-    std::string parameter;  // "tolerance", "grid", "starts", ...
-    double value = 0;       // the parameter's value
-    size_t primitives = 0;  // patches or triangles
+    std::string name;              // "exact-1e-9", "embree-N32", "newton-r16", ...
+    std::string family;            // exact, newton, embree-uniform, embree-adaptive, cgal-uniform, cgal-adaptive
+    std::string parameter;         // "tolerance", "grid", "starts", ...
+    double value = 0;              // the parameter's value
+    size_t primitives = 0;         // patches or triangles
     double tessellate_seconds = 0; // wall time to make the mesh (library, all threads); 0 for patches
-    double deviation = 0;   // the mesh's measured max distance from the patches, / diagonal
-    double tolerance = 0;   // the |dt| / diagonal the method promises (libppm's scene tolerance); 0: none
+    double deviation = 0;          // the mesh's measured max distance from the patches, / diagonal
+    double tolerance = 0;          // the |dt| / diagonal the method promises (libppm's scene tolerance); 0: none
     // Tolerance of the hits this method's rays are spawned from (the `leaving` set): the
     // scene tolerance for the exact method, libppm's default 1e-9 for every other one.
     double spawn_tolerance = 1e-9;
@@ -79,8 +79,7 @@ void warm_up_library(const std::vector<double> &control_points);
 // ray / control-point box test, then Newton on S(u, v) - o - t d = 0 from fixed starts.
 enum class NewtonStarts { center, subpatch_centers, random };
 // `count`: sub-patches per direction (subpatch_centers: count^2 starts) or random starts.
-std::unique_ptr<Method> make_newton_method(const std::vector<double> &control_points, NewtonStarts starts,
-                                           int count);
+std::unique_ptr<Method> make_newton_method(const std::vector<double> &control_points, NewtonStarts starts, int count);
 
 struct Mesh; // tessellate.h
 // Embree 3 triangles (float vertices, robust scene, rtcIntersect1) on `mesh`.

@@ -60,8 +60,7 @@ bool read_option(int argc, char **argv, int &i, std::string &option, std::string
     return true;
 }
 
-bool report_bad_value(const char *command, const std::string &option, const std::string &value,
-                      const char *expected) {
+bool report_bad_value(const char *command, const std::string &option, const std::string &value, const char *expected) {
     std::fprintf(stderr, "%s: %s '%s': expected %s\n", command, option.c_str(), value.c_str(), expected);
     return false;
 }

@@ -26,8 +26,7 @@ bool read_option(int argc, char **argv, int &i, std::string &option, std::string
 enum class ParseResult { run, help, error };
 
 // Prints "<command>: <option> '<value>': expected <expected>" and returns false.
-bool report_bad_value(const char *command, const std::string &option, const std::string &value,
-                      const char *expected);
+bool report_bad_value(const char *command, const std::string &option, const std::string &value, const char *expected);
 
 enum class OptionMatch { taken, invalid, other };
 
@@ -35,8 +34,7 @@ enum class OptionMatch { taken, invalid, other };
 // struct with these members: bpt_path, rays, width, height, min_seconds, seed. `other` leaves
 // the option to the caller.
 template <class Options>
-OptionMatch apply_ray_set_option(const char *command, const std::string &option, const std::string &value,
-                                 Options &o) {
+OptionMatch apply_ray_set_option(const char *command, const std::string &option, const std::string &value, Options &o) {
     auto bad = [&](const char *expected) {
         report_bad_value(command, option, value, expected);
         return OptionMatch::invalid;
@@ -64,8 +62,7 @@ OptionMatch apply_ray_set_option(const char *command, const std::string &option,
 // Reads every option from argv[first] on, handing each to apply(option, value), which
 // reports its own errors and returns false on one. -h or --help ends the reading with
 // `help`; a missing value is reported as "<command>: <option> needs a value".
-template <class Apply>
-ParseResult read_options(const char *command, int argc, char **argv, int first, Apply &&apply) {
+template <class Apply> ParseResult read_options(const char *command, int argc, char **argv, int first, Apply &&apply) {
     for (int i = first; i < argc; ++i) {
         if (!std::strcmp(argv[i], "-h") || !std::strcmp(argv[i], "--help")) return ParseResult::help;
         std::string option, value;

@@ -13,9 +13,7 @@ using ref::real;
 using Point = std::array<real, 3>;
 using EdgeKey = std::array<Point, 4>;
 
-Point point_of(const ref::Patch &patch, int index) {
-    return {patch.p[index][0], patch.p[index][1], patch.p[index][2]};
-}
+Point point_of(const ref::Patch &patch, int index) { return {patch.p[index][0], patch.p[index][1], patch.p[index][2]}; }
 
 int edge_index(int e, int k) { return e == 0 ? k : e == 1 ? 12 + k : e == 2 ? 4 * k : 4 * k + 3; }
 
@@ -55,8 +53,8 @@ std::vector<Seam> find_seams(const std::vector<ref::Patch> &patches) {
         const std::vector<Entry> &list = entry.second;
         for (size_t a = 0; a < list.size(); ++a)
             for (size_t b = a + 1; b < list.size(); ++b)
-                seams.push_back({list[a].patch, list[a].edge, list[b].patch, list[b].edge,
-                                 list[a].reversed != list[b].reversed});
+                seams.push_back(
+                    {list[a].patch, list[a].edge, list[b].patch, list[b].edge, list[a].reversed != list[b].reversed});
     }
     return seams;
 }
@@ -83,8 +81,7 @@ std::vector<Corner> find_corners(const std::vector<ref::Patch> &patches, int min
             const real u = (pk.second == 3 || pk.second == 15) ? 1 : 0, v = pk.second >= 12 ? 1 : 0;
             real s[3], su[3], sv[3];
             ref::evaluate(patches[pk.first], u, v, s, su, sv);
-            real n[3] = {su[1] * sv[2] - su[2] * sv[1], su[2] * sv[0] - su[0] * sv[2],
-                         su[0] * sv[1] - su[1] * sv[0]};
+            real n[3] = {su[1] * sv[2] - su[2] * sv[1], su[2] * sv[0] - su[0] * sv[2], su[0] * sv[1] - su[1] * sv[0]};
             const real l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
             const real lu = std::sqrt(su[0] * su[0] + su[1] * su[1] + su[2] * su[2]);
             const real lv = std::sqrt(sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2]);

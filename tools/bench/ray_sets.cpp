@@ -14,9 +14,9 @@ namespace {
 
 constexpr double pi = 3.14159265358979323846;
 constexpr double default_tolerance = 1e-9; // libppm's default scene tolerance
-using ref::real;
 using ref::cross;
 using ref::normalize;
+using ref::real;
 
 struct Vec {
     double x, y, z;
@@ -93,8 +93,10 @@ const RayBatch &RaySet::batch(double spawn_tolerance) const {
 std::string format_number(double x) {
     char text[32];
     const double e = std::round(std::log10(x));
-    if (x > 0 && std::fabs(x - std::pow(10.0, e)) <= 1e-12 * x) std::snprintf(text, sizeof text, "1e%d", int(e));
-    else std::snprintf(text, sizeof text, "%g", x);
+    if (x > 0 && std::fabs(x - std::pow(10.0, e)) <= 1e-12 * x)
+        std::snprintf(text, sizeof text, "1e%d", int(e));
+    else
+        std::snprintf(text, sizeof text, "%g", x);
     return text;
 }
 
@@ -160,8 +162,8 @@ RaySet grazing_rays(const ref::Intersector &reference, double angle, size_t coun
     const real diagonal = reference.diagonal();
     RaySet set;
     set.name = "grazing-" + format_number(angle);
-    set.description = "at " + format_number(angle) +
-                      " rad to the tangent plane at random surface points, from either side";
+    set.description =
+        "at " + format_number(angle) + " rad to the tangent plane at random surface points, from either side";
     set.base.rays.reserve(count);
     size_t attempts = 0;
     while (set.base.rays.size() < count) {
@@ -238,8 +240,8 @@ RaySet pole_rays(const ref::Intersector &reference, size_t count, uint64_t seed)
     std::string where;
     for (const CollapsedPoint &p : poles) {
         char text[96];
-        std::snprintf(text, sizeof text, "%s(%.6Lg, %.6Lg, %.6Lg)", where.empty() ? "" : ", ", p.point[0],
-                      p.point[1], p.point[2]);
+        std::snprintf(text, sizeof text, "%s(%.6Lg, %.6Lg, %.6Lg)", where.empty() ? "" : ", ", p.point[0], p.point[1],
+                      p.point[2]);
         where += text;
     }
     set.description = "through or within 1e-9..1e-3 diagonals of the collapsed edges " + where;

@@ -85,8 +85,10 @@ Truth compute_truth(const ref::Intersector &reference, const std::vector<ppm_ray
                 reference_normal(reference.patches()[root.patch], root.u, root.v, normal);
                 for (int c = 0; c < 3; ++c) out.normal[c] = static_cast<float>(normal[c]);
                 per_ray[i].push_back(out);
-                if (out.robust) kind[i] = TruthKind::hit;
-                else if (kind[i] == TruthKind::none) kind[i] = TruthKind::ambiguous;
+                if (out.robust)
+                    kind[i] = TruthKind::hit;
+                else if (kind[i] == TruthKind::none)
+                    kind[i] = TruthKind::ambiguous;
             }
         }
     });

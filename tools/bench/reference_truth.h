@@ -26,17 +26,17 @@ enum class TruthKind : uint8_t {
 // A reference root: every root of the ray in [tnear, tfar], in order of t (roots of several
 // patches at one point, on a seam, are all kept).
 struct TruthRoot {
-    double t;         // along the ray; the ray's direction is unit, so a distance
-    float normal[3];  // unit normal there (the limit normal at a collapsed edge)
+    double t;        // along the ray; the ray's direction is unit, so a distance
+    float normal[3]; // unit normal there (the limit normal at a collapsed edge)
     uint32_t patch;
     bool robust;
 };
 
 struct Truth {
     static constexpr uint32_t no_root = 0xFFFFFFFFu;
-    std::vector<TruthKind> kind;          // per ray
-    std::vector<uint32_t> first;          // roots of ray i: roots[first[i] .. first[i + 1])
-    std::vector<uint32_t> first_robust;   // index into roots of ray i's first robust root, or no_root
+    std::vector<TruthKind> kind;        // per ray
+    std::vector<uint32_t> first;        // roots of ray i: roots[first[i] .. first[i + 1])
+    std::vector<uint32_t> first_robust; // index into roots of ray i's first robust root, or no_root
     std::vector<TruthRoot> roots;
 
     size_t size() const { return kind.size(); }

@@ -32,20 +32,19 @@ struct RenderOptions {
 };
 
 void print_usage(std::FILE *out) {
-    std::fprintf(out,
-                 "usage: ppm-bench render [options]\n"
-                 "Times the renderer's passes: eye pass seconds, photon paths per second and peak\n"
-                 "memory, per scene, hit-point search and photons per pass; build_s is the part of\n"
-                 "eye_s spent building the hit-point search. Figures are medians over the passes.\n"
-                 "  --scenes LIST      smallppm,teapot-glass (default both)\n"
-                 "  --search LIST      grid,kdtree (default both)\n"
-                 "  --photons LIST     photons per pass, in increasing order to see whether memory\n"
-                 "                     grows with them (default 100000,1000000)\n"
-                 "  --width N, --height N  image size (default 1024 x 768)\n"
-                 "  --passes N         passes per configuration (default 4; figures are medians)\n"
-                 "  --threads N        worker threads (default 0 = all)\n"
-                 "  --teapot PATH      the .bpt of teapot-glass (default tests/data/teapot.bpt)\n"
-                 "  --images DIR       write each final image as DIR/<scene>-<search>.pfm (linear)\n");
+    std::fprintf(out, "usage: ppm-bench render [options]\n"
+                      "Times the renderer's passes: eye pass seconds, photon paths per second and peak\n"
+                      "memory, per scene, hit-point search and photons per pass; build_s is the part of\n"
+                      "eye_s spent building the hit-point search. Figures are medians over the passes.\n"
+                      "  --scenes LIST      smallppm,teapot-glass (default both)\n"
+                      "  --search LIST      grid,kdtree (default both)\n"
+                      "  --photons LIST     photons per pass, in increasing order to see whether memory\n"
+                      "                     grows with them (default 100000,1000000)\n"
+                      "  --width N, --height N  image size (default 1024 x 768)\n"
+                      "  --passes N         passes per configuration (default 4; figures are medians)\n"
+                      "  --threads N        worker threads (default 0 = all)\n"
+                      "  --teapot PATH      the .bpt of teapot-glass (default tests/data/teapot.bpt)\n"
+                      "  --images DIR       write each final image as DIR/<scene>-<search>.pfm (linear)\n");
 }
 
 std::vector<std::string> split(const std::string &text) {
@@ -75,19 +74,28 @@ RenderOptions parse(int argc, char **argv, int first) {
         }
         if (i + 1 >= argc) throw std::runtime_error("unknown option or missing value: " + arg);
         const char *value = argv[++i];
-        if (arg == "--scenes") o.scenes = split(value);
-        else if (arg == "--search") o.searches = split(value);
+        if (arg == "--scenes")
+            o.scenes = split(value);
+        else if (arg == "--search")
+            o.searches = split(value);
         else if (arg == "--photons") {
             o.photon_counts.clear();
             for (const std::string &p : split(value))
                 o.photon_counts.push_back(parse_long(p.c_str(), "--photons", 1, 1l << 31));
-        } else if (arg == "--width") o.width = static_cast<int>(parse_long(value, "--width", 1, 16384));
-        else if (arg == "--height") o.height = static_cast<int>(parse_long(value, "--height", 1, 16384));
-        else if (arg == "--passes") o.passes = static_cast<int>(parse_long(value, "--passes", 1, 100000));
-        else if (arg == "--threads") o.threads = static_cast<int>(parse_long(value, "--threads", 0, 1024));
-        else if (arg == "--teapot") o.teapot = value;
-        else if (arg == "--images") o.image_dir = value;
-        else throw std::runtime_error("unknown option: " + arg);
+        } else if (arg == "--width")
+            o.width = static_cast<int>(parse_long(value, "--width", 1, 16384));
+        else if (arg == "--height")
+            o.height = static_cast<int>(parse_long(value, "--height", 1, 16384));
+        else if (arg == "--passes")
+            o.passes = static_cast<int>(parse_long(value, "--passes", 1, 100000));
+        else if (arg == "--threads")
+            o.threads = static_cast<int>(parse_long(value, "--threads", 0, 1024));
+        else if (arg == "--teapot")
+            o.teapot = value;
+        else if (arg == "--images")
+            o.image_dir = value;
+        else
+            throw std::runtime_error("unknown option: " + arg);
     }
     return o;
 }
@@ -121,10 +129,10 @@ int run_render_command(int argc, char **argv, int first) {
         ppm_context context = nullptr;
         check(ppm_context_create(&context), "ppm_context_create");
         check(ppm_context_set_int(context, "threads", o.threads), "ppm_context_set_int");
-        std::printf("render benchmark: %d x %d, %d passes per configuration, threads %d (0 = all)\n", o.width,
-                    o.height, o.passes, o.threads);
-        std::printf("%-13s %-7s %10s %10s %12s %14s %10s %10s\n", "scene", "search", "photons", "eye_s",
-                    "photon_s", "Mpaths/s", "peak_MiB", "build_s");
+        std::printf("render benchmark: %d x %d, %d passes per configuration, threads %d (0 = all)\n", o.width, o.height,
+                    o.passes, o.threads);
+        std::printf("%-13s %-7s %10s %10s %12s %14s %10s %10s\n", "scene", "search", "photons", "eye_s", "photon_s",
+                    "Mpaths/s", "peak_MiB", "build_s");
         for (const std::string &name : o.scenes) {
             BenchScene bs = build_bench_scene(context, name, o.teapot, o.width, o.height);
             std::vector<double> rates;

@@ -25,14 +25,10 @@ std::string percent(size_t count, double rate) {
 }
 
 // A relative error for tables: "0" or two significant digits; "-" when nothing was measured.
-std::string small(double x, bool measured = true) {
-    return !measured ? "-" : x == 0 ? "0" : printf_string("%.1e", x);
-}
+std::string small(double x, bool measured = true) { return !measured ? "-" : x == 0 ? "0" : printf_string("%.1e", x); }
 
 // An angle in degrees, two significant digits.
-std::string angle(double degrees, bool measured = true) {
-    return !measured ? "-" : printf_string("%.2g", degrees);
-}
+std::string angle(double degrees, bool measured = true) { return !measured ? "-" : printf_string("%.2g", degrees); }
 
 // Milliseconds from seconds: three significant digits, no exponent.
 std::string milliseconds(double seconds) {
@@ -72,18 +68,19 @@ void print_set_tables(std::FILE *out, const std::vector<RaySet> &sets, const std
             undecided += k == TruthKind::undecided;
         }
         std::fprintf(out, "\n== %s: %zu rays (%s); reference: %zu hits, %zu ambiguous, %zu undecided ==\n",
-                     sets[s].name.c_str(), sets[s].size(), sets[s].description.c_str(), hits, ambiguous,
-                     undecided);
+                     sets[s].name.c_str(), sets[s].size(), sets[s].description.c_str(), hits, ambiguous, undecided);
         char all[24];
         std::snprintf(all, sizeof all, "Mr/s %dT", threads);
         std::fprintf(out, "%-22s %9s %9s %8s %8s %9s %9s %9s %8s %8s %8s %s\n", "method", "Mr/s 1T",
-                     threads ? all : "-", "miss", "false", "med|dt|", "p999|dt|", "max|dt|", "ng med",
-                     "ng max", "ns med", "");
+                     threads ? all : "-", "miss", "false", "med|dt|", "p999|dt|", "max|dt|", "ng med", "ng max",
+                     "ns med", "");
         for (const MethodResult &run : runs) {
             const SetResult &r = run.sets[s];
             const Stats &st = r.stats;
             std::string note;
-            if (r.thread_mismatches) note += printf_string("  %zu rays differ between 1 and %d threads", r.thread_mismatches, run.threads_all);
+            if (r.thread_mismatches)
+                note +=
+                    printf_string("  %zu rays differ between 1 and %d threads", r.thread_mismatches, run.threads_all);
             if (st.over_tolerance) note += printf_string("  %zu hits beyond the tolerance", st.over_tolerance);
             const bool any = st.matched > 0;
             std::fprintf(out, "%-22s %9s %9s %8s %8s %9s %9s %9s %8s %8s %8s%s\n", run.info.name.c_str(),
@@ -107,22 +104,21 @@ std::string summary_markdown(const std::vector<RaySet> &sets, const std::vector<
         return pair(random >= 0 ? field(random) : "-", camera >= 0 ? field(camera) : "-");
     };
     std::string md = "| method | primitives | build ms 1T / " + nt + " | memory MB | Mrays/s random 1T / " + nt +
-         " | Mrays/s camera 1T / " + nt +
-         " | miss random / camera | false hits random / camera | median \\|dt\\| random / camera"
-         " | p99.9 \\|dt\\| random / camera | max \\|dt\\| random / camera | normal error deg, median / max (random) |\n";
+                     " | Mrays/s camera 1T / " + nt +
+                     " | miss random / camera | false hits random / camera | median \\|dt\\| random / camera"
+                     " | p99.9 \\|dt\\| random / camera | max \\|dt\\| random / camera | normal error deg, median / "
+                     "max (random) |\n";
     md += "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const MethodResult &run : runs) {
         const double mb = double(run.memory.array_bytes + run.memory.structure_bytes) / 1048576.0;
-        std::string build = milliseconds(run.build_seconds_1t) + " / " +
-                            (run.threads_all ? milliseconds(run.build_seconds_all) : "-");
+        std::string build =
+            milliseconds(run.build_seconds_1t) + " / " + (run.threads_all ? milliseconds(run.build_seconds_all) : "-");
         if (run.info.tessellate_seconds > 0) build += " (+" + milliseconds(run.info.tessellate_seconds) + " tess.)";
         auto speed = [&](int s) {
             if (s < 0) return std::string("-");
             return pair(mrays(run.sets[s].rays_per_second_1t), mrays(run.sets[s].rays_per_second_all));
         };
-        auto stat = [&](auto f) {
-            return per_set([&](int s) { return f(run.sets[s].stats); });
-        };
+        auto stat = [&](auto f) { return per_set([&](int s) { return f(run.sets[s].stats); }); };
         const int first = random >= 0 ? random : camera;
         const Stats &a = run.sets[first].stats;
         md += "| " + run.info.name + " | " + std::to_string(run.info.primitives) + " | " + build + " | " +
@@ -141,14 +137,14 @@ std::string stability_markdown(const std::vector<RaySet> &sets, const std::vecto
     std::string md;
     for (int table = 0; table < 2; ++table) {
         md += table == 0 ? "Miss rate (reference hits the method misses / reference hits):\n\n"
-                         : "\nFalse-hit rate (hits on no surface the ray meets first: no root there, the nearest surface skipped, or the hit point more than 1e-3 diagonal off the surface / rays):\n\n";
+                         : "\nFalse-hit rate (hits on no surface the ray meets first: no root there, the nearest "
+                           "surface skipped, or the hit point more than 1e-3 diagonal off the surface / rays):\n\n";
         md += "| method |";
         std::string rule = "|---|";
         for (const RaySet &set : sets) {
             size_t hits = 0;
             for (TruthKind k : set.base.truth.kind) hits += k == TruthKind::hit;
-            md += " " + markdown_escape(set.name) + " (" +
-                  std::to_string(table == 0 ? hits : set.size()) + ") |";
+            md += " " + markdown_escape(set.name) + " (" + std::to_string(table == 0 ? hits : set.size()) + ") |";
             rule += "---:|";
         }
         md += "\n" + rule + "\n";
@@ -156,8 +152,8 @@ std::string stability_markdown(const std::vector<RaySet> &sets, const std::vecto
             md += "| " + run.info.name + " |";
             for (size_t s = 0; s < sets.size(); ++s) {
                 const Stats &st = run.sets[s].stats;
-                md += " " + (table == 0 ? percent(st.misses, st.miss_rate())
-                                        : percent(st.false_hits, st.false_hit_rate())) +
+                md += " " +
+                      (table == 0 ? percent(st.misses, st.miss_rate()) : percent(st.false_hits, st.false_hit_rate())) +
                       " |";
             }
             md += "\n";
@@ -186,10 +182,9 @@ void write_csv(const std::string &path, const std::vector<RaySet> &sets, const s
                          run.info.parameter.c_str(), run.info.value, run.info.primitives, st.rays, st.undecided,
                          st.reference_hits, st.ambiguous, run.threads_all, r.rays_per_second_1t,
                          r.rays_per_second_1t_wall, r.rays_per_second_all, r.thread_mismatches,
-                         run.info.tessellate_seconds, run.info.deviation, run.build_seconds_1t,
-                         run.build_seconds_all, run.memory.array_bytes, run.memory.structure_bytes, st.hits,
-                         st.misses, st.miss_rate(), st.false_hits, st.false_hit_rate(), st.matched,
-                         st.over_tolerance);
+                         run.info.tessellate_seconds, run.info.deviation, run.build_seconds_1t, run.build_seconds_all,
+                         run.memory.array_bytes, run.memory.structure_bytes, st.hits, st.misses, st.miss_rate(),
+                         st.false_hits, st.false_hit_rate(), st.matched, st.over_tolerance);
             if (st.matched > 0)
                 std::fprintf(f, "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", st.dt_median, st.dt_p999, st.dt_max,
                              st.ng_median, st.ng_p999, st.ng_max, st.ns_median, st.ns_max);

@@ -26,8 +26,7 @@ bool monitor(void *, ssize_t bytes, bool) {
 void check_device(RTCDevice device, const char *what) {
     const RTCError error = rtcGetDeviceError(device);
     if (error != RTC_ERROR_NONE)
-        throw std::runtime_error(std::string("embree: ") + what + " failed (error " +
-                                 std::to_string(int(error)) + ")");
+        throw std::runtime_error(std::string("embree: ") + what + " failed (error " + std::to_string(int(error)) + ")");
 }
 
 class EmbreeMethod final : public Method {

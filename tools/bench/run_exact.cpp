@@ -101,8 +101,7 @@ void warm_up_library(const std::vector<double> &control_points) {
     method.release();
 }
 
-std::unique_ptr<Method> make_exact_method(const std::vector<double> &control_points, double tolerance,
-                                          int presplit) {
+std::unique_ptr<Method> make_exact_method(const std::vector<double> &control_points, double tolerance, int presplit) {
     return std::make_unique<ExactMethod>(control_points, tolerance, presplit);
 }
 

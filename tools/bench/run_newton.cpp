@@ -68,8 +68,7 @@ bool box_hit(const Box &b, const ppm_ray &r) {
 }
 
 double det3(const double a[3], const double b[3], const double c[3]) {
-    return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-           a[2] * (b[0] * c[1] - b[1] * c[0]);
+    return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
 }
 
 class NewtonMethod final : public Method {
@@ -132,8 +131,9 @@ public:
             for (size_t p = 0; p < boxes_.size(); ++p) {
                 if (!box_hit(boxes_[p], r)) continue;
                 SplitMix64 rng(derive_seed(i, p));
-                const int n = starts_ == NewtonStarts::center ? 1
-                              : starts_ == NewtonStarts::subpatch_centers ? count_ * count_ : count_;
+                const int n = starts_ == NewtonStarts::center             ? 1
+                              : starts_ == NewtonStarts::subpatch_centers ? count_ * count_
+                                                                          : count_;
                 for (int k = 0; k < n; ++k) {
                     double u, v;
                     if (starts_ == NewtonStarts::center) {
@@ -212,8 +212,7 @@ private:
 
 } // namespace
 
-std::unique_ptr<Method> make_newton_method(const std::vector<double> &control_points, NewtonStarts starts,
-                                           int count) {
+std::unique_ptr<Method> make_newton_method(const std::vector<double> &control_points, NewtonStarts starts, int count) {
     return std::make_unique<NewtonMethod>(control_points, starts, count);
 }
 

@@ -18,8 +18,10 @@ void print_suspects(std::FILE *out, const std::vector<RaySet> &sets, const Metho
     // Only the exact method promises an accuracy.
     const double tolerance = exact.info.tolerance > 0 ? exact.info.tolerance : INFINITY;
     if (std::isfinite(tolerance))
-        std::fprintf(out, "\nDisagreements of %s with the reference (miss, false hit, |dt| above the tolerance "
-                          "%g diag, or normal error above 1 degree):\n", exact.info.name.c_str(), tolerance);
+        std::fprintf(out,
+                     "\nDisagreements of %s with the reference (miss, false hit, |dt| above the tolerance "
+                     "%g diag, or normal error above 1 degree):\n",
+                     exact.info.name.c_str(), tolerance);
     else
         std::fprintf(out, "\nDisagreements of %s with the reference (miss or false hit):\n", exact.info.name.c_str());
     for (size_t s = 0; s < sets.size() && s < exact.traces.size(); ++s) {
@@ -32,9 +34,12 @@ void print_suspects(std::FILE *out, const std::vector<RaySet> &sets, const Metho
             const TruthRoot *match = nullptr;
             const Outcome o = judge(trace, batch.rays, batch.truth, i, diagonal, &dt, &match);
             int kind = -1;
-            if (o == Outcome::miss) kind = 0;
-            else if (o == Outcome::false_hit) kind = 1;
-            else if (o == Outcome::correct && std::isfinite(trace.t[i]) && dt > tolerance) kind = 2;
+            if (o == Outcome::miss)
+                kind = 0;
+            else if (o == Outcome::false_hit)
+                kind = 1;
+            else if (o == Outcome::correct && std::isfinite(trace.t[i]) && dt > tolerance)
+                kind = 2;
             else if (o == Outcome::correct && match &&
                      normal_error(&trace.ng[3 * i], batch.truth, i, match, diagonal) > max_normal_error)
                 kind = 3;
@@ -49,8 +54,8 @@ void print_suspects(std::FILE *out, const std::vector<RaySet> &sets, const Metho
                 judge(trace, batch.rays, batch.truth, i, diagonal, &dt);
                 const ppm_ray &r = batch.rays[i];
                 std::fprintf(out, "  %s ray %zu, %s: org %.17g %.17g %.17g dir %.17g %.17g %.17g tnear %.17g\n",
-                             sets[s].name.c_str(), i, names[kind], r.org[0], r.org[1], r.org[2], r.dir[0],
-                             r.dir[1], r.dir[2], r.tnear);
+                             sets[s].name.c_str(), i, names[kind], r.org[0], r.org[1], r.org[2], r.dir[0], r.dir[1],
+                             r.dir[2], r.tnear);
                 if (std::isfinite(trace.t[i]))
                     std::fprintf(out, "    method:    t %.17g patch %u (|dt| %.3g diag) ng %.9g %.9g %.9g\n",
                                  trace.t[i], trace.patch[i], dt, trace.ng[3 * i], trace.ng[3 * i + 1],
@@ -58,8 +63,8 @@ void print_suspects(std::FILE *out, const std::vector<RaySet> &sets, const Metho
                 else
                     std::fprintf(out, "    method:    miss\n");
                 for (const TruthRoot *root = batch.truth.begin(i); root != batch.truth.end(i); ++root)
-                    std::fprintf(out, "    reference: t %.17g patch %u normal %.9g %.9g %.9g%s\n", root->t,
-                                 root->patch, root->normal[0], root->normal[1], root->normal[2],
+                    std::fprintf(out, "    reference: t %.17g patch %u normal %.9g %.9g %.9g%s\n", root->t, root->patch,
+                                 root->normal[0], root->normal[1], root->normal[2],
                                  root->robust ? "" : " (tangent or too shallow: not robust)");
                 if (batch.truth.begin(i) == batch.truth.end(i)) std::fprintf(out, "    reference: no root\n");
             }

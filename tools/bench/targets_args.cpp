@@ -55,36 +55,36 @@ bool apply(const std::string &option, const std::string &value, TargetsOptions &
 void print_targets_usage(std::FILE *out) {
     const TargetsOptions d;
     std::fprintf(out,
-        "usage: ppm-bench targets [options]\n"
-        "Checks the speed and memory targets of libppm's exact intersector against the same model\n"
-        "tessellated as a uniform mesh and traced by Embree and by CGAL's AABB tree: at least 0.5\n"
-        "times Embree's speed and 5 times CGAL's on random rays, at least 1000 times less memory\n"
-        "than either. Every method is built once on one thread; then, in each round, each method\n"
-        "(in an order rotated from round to round) traces each ray set on one thread, and a speed\n"
-        "ratio is taken within the round. Verdicts use the median of those per-round ratios, so a\n"
-        "load burst on a shared machine moves one round, not the verdict. The exit status does not\n"
-        "depend on the verdicts.\n"
-        "  --bpt FILE            patches to load (default %s)\n"
-        "  --presplit LIST       exact method at these scene patch_presplit values, methods\n"
-        "                        exact-presplit-N (default 3,12)\n"
-        "  --grid N              the meshes have N x N quads per patch (default %d)\n"
-        "  --rays N              random rays (default %zu; 0 skips the set and the speed targets)\n"
-        "  --width W --height H  camera rays (default %d x %d; 0 x 0 skips the set)\n"
-        "  --rounds K            timing rounds (default %d)\n"
-        "  --min-time S          each timing traces its set again until S seconds have passed\n"
-        "                        (default %g; rays/s come from process CPU time)\n"
-        "  --seed S              seed of the random rays (default %llu)\n"
-        "  --csv FILE            every timing, one row per round, method and ray set\n"
-        "  -h, --help            this text\n",
-        d.bpt_path.c_str(), d.grid, d.rays, d.width, d.height, d.rounds, d.min_seconds,
-        (unsigned long long)d.seed);
+                 "usage: ppm-bench targets [options]\n"
+                 "Checks the speed and memory targets of libppm's exact intersector against the same model\n"
+                 "tessellated as a uniform mesh and traced by Embree and by CGAL's AABB tree: at least 0.5\n"
+                 "times Embree's speed and 5 times CGAL's on random rays, at least 1000 times less memory\n"
+                 "than either. Every method is built once on one thread; then, in each round, each method\n"
+                 "(in an order rotated from round to round) traces each ray set on one thread, and a speed\n"
+                 "ratio is taken within the round. Verdicts use the median of those per-round ratios, so a\n"
+                 "load burst on a shared machine moves one round, not the verdict. The exit status does not\n"
+                 "depend on the verdicts.\n"
+                 "  --bpt FILE            patches to load (default %s)\n"
+                 "  --presplit LIST       exact method at these scene patch_presplit values, methods\n"
+                 "                        exact-presplit-N (default 3,12)\n"
+                 "  --grid N              the meshes have N x N quads per patch (default %d)\n"
+                 "  --rays N              random rays (default %zu; 0 skips the set and the speed targets)\n"
+                 "  --width W --height H  camera rays (default %d x %d; 0 x 0 skips the set)\n"
+                 "  --rounds K            timing rounds (default %d)\n"
+                 "  --min-time S          each timing traces its set again until S seconds have passed\n"
+                 "                        (default %g; rays/s come from process CPU time)\n"
+                 "  --seed S              seed of the random rays (default %llu)\n"
+                 "  --csv FILE            every timing, one row per round, method and ray set\n"
+                 "  -h, --help            this text\n",
+                 d.bpt_path.c_str(), d.grid, d.rays, d.width, d.height, d.rounds, d.min_seconds,
+                 (unsigned long long)d.seed);
 }
 
 ParseResult parse_targets_args(int argc, char **argv, int first, TargetsOptions &options) {
-    const ParseResult read = read_options(command, argc, argv, first, [&](const std::string &option,
-                                                                          const std::string &value) {
-        return apply(option, value, options);
-    });
+    const ParseResult read =
+        read_options(command, argc, argv, first, [&](const std::string &option, const std::string &value) {
+            return apply(option, value, options);
+        });
     if (read != ParseResult::run) return read;
     if ((options.width == 0) != (options.height == 0)) {
         std::fprintf(stderr, "%s: --width and --height must both be 0 or both positive\n", command);

@@ -27,17 +27,15 @@ BuiltMethod build(std::unique_ptr<Method> method) {
     built.memory = method->build(1);
     built.build_seconds = clock.wall_seconds();
     built.method = std::move(method);
-    std::fprintf(stderr, "%-20s %9zu primitives, %8.3f MiB, built in %8.2f ms\n",
-                 built.method->info().name.c_str(), built.method->info().primitives,
-                 double(built.bytes()) / 1048576.0, 1e3 * built.build_seconds);
+    std::fprintf(stderr, "%-20s %9zu primitives, %8.3f MiB, built in %8.2f ms\n", built.method->info().name.c_str(),
+                 built.method->info().primitives, double(built.bytes()) / 1048576.0, 1e3 * built.build_seconds);
     return built;
 }
 
 // The exact methods first, before the mesh exists, so that their memory deltas are not blurred
 // by the mesh's allocations; then the mesh methods. The first method is the one the others'
 // hits are compared with.
-std::vector<BuiltMethod> build_methods(const TargetsOptions &o, const std::vector<double> &patches,
-                                       double diagonal) {
+std::vector<BuiltMethod> build_methods(const TargetsOptions &o, const std::vector<double> &patches, double diagonal) {
     warm_up_library(patches);
     std::vector<BuiltMethod> methods;
     for (int presplit : o.presplits) methods.push_back(build(make_exact_method(patches, default_tolerance, presplit)));

@@ -49,8 +49,10 @@ Spread spread(std::vector<double> values) {
 // side read alike; whole numbers from 100 up, without an exponent.
 std::string number(double x) {
     char text[32];
-    if (std::fabs(x) >= 100) std::snprintf(text, sizeof text, "%.0f", x);
-    else std::snprintf(text, sizeof text, "%#.3g", x);
+    if (std::fabs(x) >= 100)
+        std::snprintf(text, sizeof text, "%.0f", x);
+    else
+        std::snprintf(text, sizeof text, "%#.3g", x);
     return text;
 }
 
@@ -89,7 +91,9 @@ std::string verdict(double value, bool measured, double at_least) {
     char threshold[32];
     std::snprintf(threshold, sizeof threshold, "%g", at_least);
     return std::string("  target >= ") + threshold + "  " +
-           (!measured ? "NOT CHECKED" : value >= at_least ? "PASS" : "FAIL");
+           (!measured           ? "NOT CHECKED"
+            : value >= at_least ? "PASS"
+                                : "FAIL");
 }
 
 // The verdict lines of one exact method; returns how many targets it meets and how many were
@@ -158,9 +162,8 @@ void print_speed_tables(std::FILE *out, const std::vector<RaySet> &sets, const s
 
 void print_verdicts(std::FILE *out, const std::vector<RaySet> &sets, const std::vector<BuiltMethod> &methods,
                     const RoundsResult &rounds) {
-    std::fprintf(out,
-                 "\n== targets: speed is the median over rounds of exact rays/s / mesh rays/s within a round "
-                 "(min-max in brackets); memory is mesh bytes / exact bytes ==\n");
+    std::fprintf(out, "\n== targets: speed is the median over rounds of exact rays/s / mesh rays/s within a round "
+                      "(min-max in brackets); memory is mesh bytes / exact bytes ==\n");
     if (find_family(methods, "cgal-uniform") < 0)
         std::fprintf(out, "CGAL targets not checked: this ppm-bench was built without CGAL\n");
     const int camera = find_set(sets, informational_set);
@@ -173,26 +176,25 @@ void print_verdicts(std::FILE *out, const std::vector<RaySet> &sets, const std::
                 const int peer = find_family(methods, family);
                 if (peer < 0) continue;
                 const Spread s = speed_ratio(rounds, m, size_t(peer), size_t(camera));
-                std::fprintf(out, "%s  (no target)\n",
-                             speed_line(informational_set, name_of(methods, m), name_of(methods, size_t(peer)), s)
-                                 .c_str());
+                std::fprintf(
+                    out, "%s  (no target)\n",
+                    speed_line(informational_set, name_of(methods, m), name_of(methods, size_t(peer)), s).c_str());
             }
         std::fprintf(out, "%s meets %d of %d targets checked\n", name_of(methods, m).c_str(), score.first,
                      score.second);
     }
 }
 
-void write_rounds_csv(const std::string &path, const std::vector<RaySet> &sets,
-                      const std::vector<BuiltMethod> &methods, const RoundsResult &rounds) {
+void write_rounds_csv(const std::string &path, const std::vector<RaySet> &sets, const std::vector<BuiltMethod> &methods,
+                      const RoundsResult &rounds) {
     std::FILE *f = std::fopen(path.c_str(), "w");
     if (!f) throw std::runtime_error(path + ": cannot open for writing");
     std::fprintf(f, "round,position,method,family,set,rays,cpu_seconds,wall_seconds,rays_per_second,memory_bytes\n");
     for (const Sample &s : rounds.samples) {
         const BuiltMethod &method = methods[s.method];
         std::fprintf(f, "%d,%d,%s,%s,%s,%zu,%.9g,%.9g,%.9g,%zu\n", s.round + 1, s.position + 1,
-                     method.method->info().name.c_str(), method.method->info().family.c_str(),
-                     sets[s.set].name.c_str(), s.timing.rays, s.timing.cpu, s.timing.wall, s.rays_per_second(),
-                     method.bytes());
+                     method.method->info().name.c_str(), method.method->info().family.c_str(), sets[s.set].name.c_str(),
+                     s.timing.rays, s.timing.cpu, s.timing.wall, s.rays_per_second(), method.bytes());
     }
     if (std::fclose(f) != 0) throw std::runtime_error(path + ": write failed");
 }

@@ -23,7 +23,7 @@ void print_verdicts(std::FILE *out, const std::vector<RaySet> &sets, const std::
                     const RoundsResult &rounds);
 
 // One row per round, method and ray set. Throws on I/O errors.
-void write_rounds_csv(const std::string &path, const std::vector<RaySet> &sets,
-                      const std::vector<BuiltMethod> &methods, const RoundsResult &rounds);
+void write_rounds_csv(const std::string &path, const std::vector<RaySet> &sets, const std::vector<BuiltMethod> &methods,
+                      const RoundsResult &rounds);
 
 } // namespace bench

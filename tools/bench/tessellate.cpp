@@ -20,8 +20,7 @@ struct MeshHandle {
 
 } // namespace
 
-Mesh tessellate(const std::vector<double> &control_points, int grid, double relative_tolerance,
-                double diagonal) {
+Mesh tessellate(const std::vector<double> &control_points, int grid, double relative_tolerance, double diagonal) {
     Mesh out;
     out.grid = grid;
     out.relative_tolerance = grid > 0 ? 0 : relative_tolerance;

@@ -10,14 +10,14 @@
 namespace bench {
 
 struct Mesh {
-    std::string label;       // "N32" (uniform grid) or "adaptive-1e-4" (relative tolerance)
-    int grid = 0;            // segments per patch edge; 0 for an adaptive mesh
+    std::string label;             // "N32" (uniform grid) or "adaptive-1e-4" (relative tolerance)
+    int grid = 0;                  // segments per patch edge; 0 for an adaptive mesh
     double relative_tolerance = 0; // adaptive: requested tolerance / diagonal
-    double deviation = 0;    // measured max distance from the patches / diagonal
-    double seconds = 0;      // wall time of ppm_tessellate_patches
+    double deviation = 0;          // measured max distance from the patches / diagonal
+    double seconds = 0;            // wall time of ppm_tessellate_patches
     // Welded, crack-free mesh: distinct positions and triangles indexing them.
-    std::vector<double> positions;    // 3 per welded vertex
-    std::vector<uint32_t> indices;    // 3 per triangle, into positions
+    std::vector<double> positions; // 3 per welded vertex
+    std::vector<uint32_t> indices; // 3 per triangle, into positions
     // Per triangle corner (3 per triangle): the unit surface normal of that corner's unwelded
     // vertex (its own patch's normal), for the interpolated shading normal of a hit.
     std::vector<float> corner_normal; // 3 per corner
@@ -31,8 +31,7 @@ struct Mesh {
 
 // grid > 0: uniform grid x grid quads per patch; grid == 0: adaptive with absolute tolerance
 // relative_tolerance * diagonal. Throws with libppm's message on failure.
-Mesh tessellate(const std::vector<double> &control_points, int grid, double relative_tolerance,
-                double diagonal);
+Mesh tessellate(const std::vector<double> &control_points, int grid, double relative_tolerance, double diagonal);
 
 // Interpolated unit shading normal at barycentric (b1, b2) (weights of the triangle's second
 // and third corner, Embree's convention) of triangle `tri`.

@@ -74,15 +74,23 @@ void split_curve(const real (*q)[3], int stride, real (*left)[3], real (*right)[
 void split_u(const Node &n, Node &left, Node &right) {
     for (int i = 0; i < 4; ++i) split_curve(&n.cp[i * 4], 1, &left.cp[i * 4], &right.cp[i * 4]);
     const real mid = 0.5L * (n.u0 + n.u1);
-    left.u0 = n.u0; left.u1 = mid; right.u0 = mid; right.u1 = n.u1;
-    left.v0 = right.v0 = n.v0; left.v1 = right.v1 = n.v1;
+    left.u0 = n.u0;
+    left.u1 = mid;
+    right.u0 = mid;
+    right.u1 = n.u1;
+    left.v0 = right.v0 = n.v0;
+    left.v1 = right.v1 = n.v1;
 }
 
 void split_v(const Node &n, Node &left, Node &right) {
     for (int j = 0; j < 4; ++j) split_curve(&n.cp[j], 4, &left.cp[j], &right.cp[j]);
     const real mid = 0.5L * (n.v0 + n.v1);
-    left.v0 = n.v0; left.v1 = mid; right.v0 = mid; right.v1 = n.v1;
-    left.u0 = right.u0 = n.u0; left.u1 = right.u1 = n.u1;
+    left.v0 = n.v0;
+    left.v1 = mid;
+    right.v0 = mid;
+    right.v1 = n.v1;
+    left.u0 = right.u0 = n.u0;
+    left.u1 = right.u1 = n.u1;
 }
 
 // Length of the control polygon along u (max over rows) and along v (max over columns).
@@ -139,10 +147,10 @@ bool solve3(const real a0[3], const real a1[3], const real a2[3], const real b[3
 struct Query {
     const Patch &patch;
     const real *o, *d;
-    real dd;           // |d|^2
-    real dlen;         // |d|
+    real dd;   // |d|^2
+    real dlen; // |d|
     real tnear, tfar;
-    real scale;        // magnitude of the coordinates involved: sets the rounding level
+    real scale; // magnitude of the coordinates involved: sets the rounding level
 };
 
 // Whether the normal n = S_u x S_v is unreliable: a derivative nearly vanishes (within 1e-8
@@ -264,8 +272,7 @@ bool newton(const Query &q, const real domain[4], real &u, real &v, real &t, rea
         u += step[0];
         v += step[1];
         t += step[2];
-        if (!(u >= domain[0] && u <= domain[1] && v >= domain[2] && v <= domain[3]))
-            return finish(polish >= 0);
+        if (!(u >= domain[0] && u <= domain[1] && v >= domain[2] && v <= domain[3])) return finish(polish >= 0);
     }
     return finish(polish >= 0);
 }
@@ -346,8 +353,7 @@ Transversality transversality(const Query &q, const Node &n) {
     real normal[5][3];
     for (int k = 0; k < 5; ++k) {
         real s[3], su[3], sv[3];
-        evaluate(q.patch, n.u0 + at[k][0] * (n.u1 - n.u0), n.v0 + at[k][1] * (n.v1 - n.v0), s, su,
-                 sv);
+        evaluate(q.patch, n.u0 + at[k][0] * (n.u1 - n.u0), n.v0 + at[k][1] * (n.v1 - n.v0), s, su, sv);
         cross3(su, sv, normal[k]);
         const real l = norm3(normal[k]);
         if (degenerate(su, sv, normal[k])) return Transversality::degenerate;
@@ -361,8 +367,7 @@ Transversality transversality(const Query &q, const Node &n) {
         lowest = std::min(lowest, x);
         highest = std::max(highest, x);
     }
-    return lowest > 0 && lowest > highest - lowest ? Transversality::unique
-                                                   : Transversality::not_proven;
+    return lowest > 0 && lowest > highest - lowest ? Transversality::unique : Transversality::not_proven;
 }
 
 bool box_hit(const Node &n, const Query &q, real pad) {
@@ -435,8 +440,7 @@ bool load_bpt(const std::string &path, std::vector<Patch> &patches, std::string 
         error = "cannot open " + path;
         return false;
     }
-    std::vector<std::string> tokens{std::istream_iterator<std::string>(in),
-                                    std::istream_iterator<std::string>()};
+    std::vector<std::string> tokens{std::istream_iterator<std::string>(in), std::istream_iterator<std::string>()};
     size_t k = 0;
     auto number = [&](double &x) {
         if (k >= tokens.size()) return false;
@@ -526,18 +530,16 @@ Result Intersector::intersect(const real o[3], const real d[3], real tnear, real
     Result result;
     for (int index = 0; index < static_cast<int>(patches_.size()) && result.decided; ++index)
         intersect_patch(index, o, d, tnear, tfar, result);
-    std::sort(result.roots.begin(), result.roots.end(), [](const Root &a, const Root &b) {
-        return a.t != b.t ? a.t < b.t : a.patch < b.patch;
-    });
+    std::sort(result.roots.begin(), result.roots.end(),
+              [](const Root &a, const Root &b) { return a.t != b.t ? a.t < b.t : a.patch < b.patch; });
     return result;
 }
 
-void Intersector::intersect_patch(int index, const real o[3], const real d[3], real tnear,
-                                  real tfar, Result &result) const {
+void Intersector::intersect_patch(int index, const real o[3], const real d[3], real tnear, real tfar,
+                                  Result &result) const {
     const Patch &patch = patches_[index];
     real scale = std::max({std::fabs(o[0]), std::fabs(o[1]), std::fabs(o[2])});
-    for (const auto &q : patch.p)
-        scale = std::max({scale, std::fabs(q[0]), std::fabs(q[1]), std::fabs(q[2])});
+    for (const auto &q : patch.p) scale = std::max({scale, std::fabs(q[0]), std::fabs(q[1]), std::fabs(q[2])});
     const Query q{patch, o, d, dot3(d, d), norm3(d), tnear, tfar, scale};
     // Boxes are exact hulls; the pad covers rounding and finds near misses for the caller.
     const real pad = options_.near_distance + 64 * LDBL_EPSILON * scale;
@@ -574,8 +576,10 @@ void Intersector::intersect_patch(int index, const real o[3], const real d[3], r
             real along_u, along_v;
             net_lengths(n, along_u, along_v);
             Node a, b;
-            if ((along_u >= along_v && wu > 1e-17L) || wv <= 1e-17L) split_u(n, a, b);
-            else split_v(n, a, b);
+            if ((along_u >= along_v && wu > 1e-17L) || wv <= 1e-17L)
+                split_u(n, a, b);
+            else
+                split_v(n, a, b);
             stack.push_back(a);
             stack.push_back(b);
             continue;
@@ -593,8 +597,7 @@ void Intersector::intersect_patch(int index, const real o[3], const real d[3], r
         auto inside = [&](real u, real v) {
             return u >= n.u0 - mu && u <= n.u1 + mu && v >= n.v0 - mv && v <= n.v1 + mv;
         };
-        const real starts[5][2] = {{0.5L, 0.5L}, {0.25L, 0.25L}, {0.75L, 0.25L},
-                                   {0.25L, 0.75L}, {0.75L, 0.75L}};
+        const real starts[5][2] = {{0.5L, 0.5L}, {0.25L, 0.25L}, {0.75L, 0.25L}, {0.25L, 0.75L}, {0.75L, 0.75L}};
         bool any = false;
         for (int s = 0; s < 5; ++s) {
             real u = n.u0 + starts[s][0] * wu, v = n.v0 + starts[s][1] * wv, t, residual;
@@ -608,7 +611,9 @@ void Intersector::intersect_patch(int index, const real o[3], const real d[3], r
             if (converged && inside(u, v) && t >= tnear && t <= tfar) {
                 Root r;
                 r.patch = index;
-                r.u = u; r.v = v; r.t = t;
+                r.u = u;
+                r.v = v;
+                r.t = t;
                 r.distance = residual;
                 r.kind = RootKind::proper;
                 describe_root(q, r);
@@ -627,11 +632,12 @@ void Intersector::intersect_patch(int index, const real o[3], const real d[3], r
 
         real u = n.u0 + 0.5L * wu, v = n.v0 + 0.5L * wv, t;
         const real distance = closest_approach(q, domain, u, v, t);
-        if (!(distance <= options_.near_distance) || !inside(u, v) || !(t >= tnear && t <= tfar))
-            continue;
+        if (!(distance <= options_.near_distance) || !inside(u, v) || !(t >= tnear && t <= tfar)) continue;
         Root r;
         r.patch = index;
-        r.u = u; r.v = v; r.t = t;
+        r.u = u;
+        r.v = v;
+        r.t = t;
         r.distance = distance;
         describe_root(q, r);
         r.kind = distance <= exact_distance ? RootKind::singular : RootKind::tangent;

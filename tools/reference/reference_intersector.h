@@ -44,8 +44,7 @@ struct Patch {
 bool load_bpt(const std::string &path, std::vector<Patch> &patches, std::string &error);
 
 // S(u, v) and, when the pointers are non-null, dS/du and dS/dv.
-void evaluate(const Patch &patch, real u, real v, real s[3], real su[3] = nullptr,
-              real sv[3] = nullptr);
+void evaluate(const Patch &patch, real u, real v, real s[3], real su[3] = nullptr, real sv[3] = nullptr);
 
 enum class RootKind {
     proper,   // Newton converged: a transversal (or at least isolated) root, exact to ~1e-17
@@ -71,9 +70,9 @@ struct Root {
 };
 
 struct Options {
-    real leaf_size = 0;     // box extent that ends subdivision; 0: 1e-6 * model diagonal
-    real near_distance = 0; // hulls are padded by this, and near misses within it are
-                            // reported as tangent roots; 0: 2e-9 * model diagonal
+    real leaf_size = 0;         // box extent that ends subdivision; 0: 1e-6 * model diagonal
+    real near_distance = 0;     // hulls are padded by this, and near misses within it are
+                                // reported as tangent roots; 0: 2e-9 * model diagonal
     size_t max_nodes = 4000000; // work bound per ray: above it the ray is undecided
 };
 
@@ -97,8 +96,7 @@ public:
     Result intersect(const real o[3], const real d[3], real tnear, real tfar) const;
 
 private:
-    void intersect_patch(int index, const real o[3], const real d[3], real tnear, real tfar,
-                         Result &result) const;
+    void intersect_patch(int index, const real o[3], const real d[3], real tnear, real tfar, Result &result) const;
 
     std::vector<Patch> patches_;
     Options options_;

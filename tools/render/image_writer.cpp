@@ -18,7 +18,8 @@ std::string lower_extension(const std::string &path) {
     const std::size_t dot = path.rfind('.');
     if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
     std::string ext = path.substr(dot + 1);
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     return ext;
 }
 
@@ -85,8 +86,8 @@ void write_image_atomically(const std::string &path, const Image &image, double 
     ok = out->close() && ok;
     out.reset();
     if (!ok || encoded.empty())
-        throw std::runtime_error(path + ": cannot encode the image: " +
-                                 (error.empty() ? std::string("unknown error") : error));
+        throw std::runtime_error(
+            path + ": cannot encode the image: " + (error.empty() ? std::string("unknown error") : error));
     write_bytes_atomically(path, encoded.data(), encoded.size());
 }
 

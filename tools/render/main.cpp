@@ -22,9 +22,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // A failed libppm call (a bad scene, setting or checkpoint, or a failure at run time): exit
 // status 2, as for every runtime error (STYLE.md: 1 is for usage errors).
@@ -143,9 +141,9 @@ int render(const Options &options, SignalWatcher &signals) {
     check(ppm_scene_file_get_double(file, "time", &file_time));
     const double budget = options.time >= 0 ? options.time : file_time;
     const uint64_t target = options.passes > 0 ? static_cast<uint64_t>(options.passes)
-                            : file_passes > 0   ? static_cast<uint64_t>(file_passes)
-                            : budget > 0        ? 0 // until the time is up
-                                                : 16;
+                            : file_passes > 0  ? static_cast<uint64_t>(file_passes)
+                            : budget > 0       ? 0 // until the time is up
+                                               : 16;
 
     if (!options.resume.empty()) check(ppm_renderer_load_checkpoint(renderer, options.resume.c_str()), "--resume");
     int64_t passes = 0, width = 0, height = 0, photons_per_pass = 0, threads = 0;
@@ -161,8 +159,10 @@ int render(const Options &options, SignalWatcher &signals) {
         std::fprintf(stderr, "ppm-render: %s: %lld x %lld, %s, %lld photons/pass, ", options.scene.c_str(),
                      static_cast<long long>(width), static_cast<long long>(height), mode,
                      static_cast<long long>(photons_per_pass));
-        if (target > 0) std::fprintf(stderr, "%llu passes", static_cast<unsigned long long>(target));
-        else std::fprintf(stderr, "passes until %.1f s", budget);
+        if (target > 0)
+            std::fprintf(stderr, "%llu passes", static_cast<unsigned long long>(target));
+        else
+            std::fprintf(stderr, "passes until %.1f s", budget);
         if (passes > 0) std::fprintf(stderr, " (resuming after pass %lld)", static_cast<long long>(passes));
         std::fprintf(stderr, ", %lld threads\n", static_cast<long long>(threads));
     }
@@ -232,7 +232,8 @@ int render(const Options &options, SignalWatcher &signals) {
         int64_t emitted = 0;
         check(ppm_renderer_get_int(renderer, "photons_emitted", &emitted));
         const int64_t done = passes - first_pass;
-        std::fprintf(stderr, "ppm-render: %lld passes (%.1f M photons emitted in all) in %.1f s, %.3f s per pass -> %s\n",
+        std::fprintf(stderr,
+                     "ppm-render: %lld passes (%.1f M photons emitted in all) in %.1f s, %.3f s per pass -> %s\n",
                      static_cast<long long>(passes), static_cast<double>(emitted) / 1e6, elapsed,
                      done > 0 ? elapsed / static_cast<double>(done) : 0.0, joined_outputs(options).c_str());
         if (interrupted)

@@ -33,7 +33,8 @@ void ProgressBar::update(std::uint64_t passes, std::uint64_t target_passes, doub
     format_duration(elapsed, elapsed_text, sizeof elapsed_text);
     if (eta_seconds >= 0) format_duration(eta_seconds, eta_text, sizeof eta_text);
     char target[32] = "";
-    if (target_passes > 0) std::snprintf(target, sizeof target, "/%llu", static_cast<unsigned long long>(target_passes));
+    if (target_passes > 0)
+        std::snprintf(target, sizeof target, "/%llu", static_cast<unsigned long long>(target_passes));
     std::fprintf(stderr, "\r[%s] pass %llu%s  %.2f M photons/s  %s elapsed  ETA %s \033[K", bar,
                  static_cast<unsigned long long>(passes), target, photons_per_second / 1e6, elapsed_text, eta_text);
     std::fflush(stderr);

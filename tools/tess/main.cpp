@@ -20,26 +20,25 @@
 
 namespace {
 
-const char *const usage_text =
-    "usage: ppm-tess INPUT -o OUTPUT.obj [options]\n"
-    "Tessellates bicubic Bezier patches into triangles whose distance from the surface is\n"
-    "measured and held within a tolerance, or into a uniform grid. INPUT is a .bpt file or\n"
-    "a scene file (.json, docs/scene-format.md): then every Bezier shape, placed by its\n"
-    "to_world, goes into one mesh.\n"
-    "options:\n"
-    "  -o, --output PATH   output file: OBJ (v, vt, vn, f v/vt/vn; seam vertices welded;\n"
-    "                      vt = patch (u, 1 - v), the OBJ convention),\n"
-    "                      or PLY when PATH ends in .ply or with --ply\n"
-    "  --tolerance E       largest distance from the surface, absolute (default: 1e-3\n"
-    "                      of the bounding-box diagonal of the control points)\n"
-    "  --relative          E is relative to that diagonal\n"
-    "  --grid N            uniform N x N quads per patch instead (1..4096)\n"
-    "  --ply               write ASCII PLY (x y z nx ny nz u v per vertex; seam vertices\n"
-    "                      repeated once per patch, at identical positions)\n"
-    "  -h, --help          this text\n"
-    "  --version           print the libppm version\n"
-    "The triangle count and the measured deviation (absolute and relative) go to stderr.\n"
-    "Exit status: 0 ok, 1 usage error, 2 runtime error.\n";
+const char *const usage_text = "usage: ppm-tess INPUT -o OUTPUT.obj [options]\n"
+                               "Tessellates bicubic Bezier patches into triangles whose distance from the surface is\n"
+                               "measured and held within a tolerance, or into a uniform grid. INPUT is a .bpt file or\n"
+                               "a scene file (.json, docs/scene-format.md): then every Bezier shape, placed by its\n"
+                               "to_world, goes into one mesh.\n"
+                               "options:\n"
+                               "  -o, --output PATH   output file: OBJ (v, vt, vn, f v/vt/vn; seam vertices welded;\n"
+                               "                      vt = patch (u, 1 - v), the OBJ convention),\n"
+                               "                      or PLY when PATH ends in .ply or with --ply\n"
+                               "  --tolerance E       largest distance from the surface, absolute (default: 1e-3\n"
+                               "                      of the bounding-box diagonal of the control points)\n"
+                               "  --relative          E is relative to that diagonal\n"
+                               "  --grid N            uniform N x N quads per patch instead (1..4096)\n"
+                               "  --ply               write ASCII PLY (x y z nx ny nz u v per vertex; seam vertices\n"
+                               "                      repeated once per patch, at identical positions)\n"
+                               "  -h, --help          this text\n"
+                               "  --version           print the libppm version\n"
+                               "The triangle count and the measured deviation (absolute and relative) go to stderr.\n"
+                               "Exit status: 0 ok, 1 usage error, 2 runtime error.\n";
 
 struct Options {
     std::string input, output;
@@ -180,8 +179,7 @@ struct MeshView {
 };
 
 void write_obj(std::FILE *out, const MeshView &m, const std::string &input) {
-    std::fprintf(out, "# ppm-tess %s from %s: %zu triangles\n", ppm_version_string(), input.c_str(),
-                 m.triangle_count);
+    std::fprintf(out, "# ppm-tess %s from %s: %zu triangles\n", ppm_version_string(), input.c_str(), m.triangle_count);
     // One v per distinct position, vt and vn per vertex: the faces share positions across
     // seams (the mesh is closed there) while keeping each patch's (u, v) and normal.
     std::vector<size_t> first(m.welded_count, SIZE_MAX);
@@ -201,8 +199,8 @@ void write_obj(std::FILE *out, const MeshView &m, const std::string &input) {
     }
     for (size_t t = 0; t < m.triangle_count; ++t) {
         const uint32_t *c = m.indices + 3 * t;
-        std::fprintf(out, "f %u/%u/%u %u/%u/%u %u/%u/%u\n", m.welded[c[0]] + 1, c[0] + 1, c[0] + 1,
-                     m.welded[c[1]] + 1, c[1] + 1, c[1] + 1, m.welded[c[2]] + 1, c[2] + 1, c[2] + 1);
+        std::fprintf(out, "f %u/%u/%u %u/%u/%u %u/%u/%u\n", m.welded[c[0]] + 1, c[0] + 1, c[0] + 1, m.welded[c[1]] + 1,
+                     c[1] + 1, c[1] + 1, m.welded[c[2]] + 1, c[2] + 1, c[2] + 1);
     }
 }
 
@@ -217,9 +215,9 @@ void write_ply(std::FILE *out, const MeshView &m, const std::string &input) {
     char text[8][32];
     for (size_t v = 0; v < m.vertex_count; ++v) {
         const double *p = m.positions + 3 * v, *n = m.normals + 3 * v, *t = m.uvs + 2 * v;
-        std::fprintf(out, "%s %s %s %s %s %s %s %s\n", exact(p[0], text[0]), exact(p[1], text[1]),
-                     exact(p[2], text[2]), exact(n[0], text[3]), exact(n[1], text[4]), exact(n[2], text[5]),
-                     exact(t[0], text[6]), exact(t[1], text[7]));
+        std::fprintf(out, "%s %s %s %s %s %s %s %s\n", exact(p[0], text[0]), exact(p[1], text[1]), exact(p[2], text[2]),
+                     exact(n[0], text[3]), exact(n[1], text[4]), exact(n[2], text[5]), exact(t[0], text[6]),
+                     exact(t[1], text[7]));
     }
     for (size_t t = 0; t < m.triangle_count; ++t)
         std::fprintf(out, "3 %u %u %u\n", m.indices[3 * t], m.indices[3 * t + 1], m.indices[3 * t + 2]);
@@ -275,10 +273,12 @@ int run(const Options &o) {
         if (o.grid)
             std::fprintf(stderr, "ppm-tess: %s: %zu patches, uniform grid %u: ", o.input.c_str(), patch_count, o.grid);
         else
-            std::fprintf(stderr, "ppm-tess: %s: %zu patches, tolerance %.6g (%.6g of the diagonal %.6g): ",
-                         o.input.c_str(), patch_count, tolerance, tolerance / diag, diag);
-        std::fprintf(stderr, "%zu triangles, %zu vertices (%zu distinct positions); measured max deviation %.6g "
-                             "(%.6g of the diagonal); %.2f s\n",
+            std::fprintf(stderr,
+                         "ppm-tess: %s: %zu patches, tolerance %.6g (%.6g of the diagonal %.6g): ", o.input.c_str(),
+                         patch_count, tolerance, tolerance / diag, diag);
+        std::fprintf(stderr,
+                     "%zu triangles, %zu vertices (%zu distinct positions); measured max deviation %.6g "
+                     "(%.6g of the diagonal); %.2f s\n",
                      m.triangle_count, m.vertex_count, m.welded_count, deviation, deviation / diag, seconds);
         write_atomically(o.output, [&](std::FILE *out) {
             if (o.ply)

@@ -143,7 +143,9 @@ void write_png(const Image &image, const std::string &path) {
 constexpr int porcelain_w = 1024, porcelain_h = 512;
 
 // Horizontal band [y0, y1) in pixels, with a soft edge half a pixel wide.
-double band(double y, double y0, double y1) { return smoothstep(y0 - 0.5, y0 + 0.5, y) * (1 - smoothstep(y1 - 0.5, y1 + 0.5, y)); }
+double band(double y, double y0, double y1) {
+    return smoothstep(y0 - 0.5, y0 + 0.5, y) * (1 - smoothstep(y1 - 0.5, y1 + 0.5, y));
+}
 
 // Ink of a stroke of half-width w at distance d.
 double stroke(double d, double w) { return 1 - smoothstep(w - 0.6, w + 0.6, d); }
@@ -151,12 +153,7 @@ double stroke(double d, double w) { return 1 - smoothstep(w - 0.6, w + 0.6, d); 
 // Greek key: each unit is 6 x 6 cells; a spiral hook, then a baseline into the next unit.
 double key_fret(double x, double y, double y0, double y1) {
     static const char *const unit[6] = {
-        "#####.",
-        "#...#.",
-        "#.#.#.",
-        "#.###.",
-        "#.....",
-        "######",
+        "#####.", "#...#.", "#.#.#.", "#.###.", "#.....", "######",
     };
     if (y < y0 || y >= y1) return 0;
     constexpr int units = 24;
@@ -255,17 +252,17 @@ double vine_field(double x, double y, double y0, double y1) {
 double porcelain_ink(double x, double y) {
     const double H = porcelain_h;
     double ink = 0;
-    ink = std::max(ink, band(y, 0, 0.035 * H));                 // rim
-    ink = std::max(ink, band(y, 0.052 * H, 0.060 * H));         // thin line
-    ink = std::max(ink, band(y, 0.075 * H, 0.080 * H));         // fret border
+    ink = std::max(ink, band(y, 0, 0.035 * H));         // rim
+    ink = std::max(ink, band(y, 0.052 * H, 0.060 * H)); // thin line
+    ink = std::max(ink, band(y, 0.075 * H, 0.080 * H)); // fret border
     ink = std::max(ink, key_fret(x, y, 0.088 * H, 0.158 * H));
-    ink = std::max(ink, band(y, 0.166 * H, 0.171 * H));         // fret border
+    ink = std::max(ink, band(y, 0.166 * H, 0.171 * H)); // fret border
     ink = std::max(ink, vine_field(x, y, 0.19 * H, 0.63 * H));
-    ink = std::max(ink, band(y, 0.645 * H, 0.655 * H));         // double line
+    ink = std::max(ink, band(y, 0.645 * H, 0.655 * H)); // double line
     ink = std::max(ink, band(y, 0.662 * H, 0.666 * H));
     ink = std::max(ink, lotus_panels(x, y, 0.68 * H, 0.90 * H));
     ink = std::max(ink, band(y, 0.915 * H, 0.922 * H));
-    ink = std::max(ink, band(y, 0.945 * H, 1.0 * H + 1));      // foot ring
+    ink = std::max(ink, band(y, 0.945 * H, 1.0 * H + 1)); // foot ring
     return ink;
 }
 

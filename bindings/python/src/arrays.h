@@ -20,11 +20,10 @@ using OutFloats = nanobind::ndarray<float, nanobind::c_contig, nanobind::device:
 using OutDoubles = nanobind::ndarray<double, nanobind::c_contig, nanobind::device::cpu>;
 
 // Number of groups of `group` elements in `a`; ValueError unless `a` holds a whole number.
-template <typename Array>
-size_t groups_of(const Array &a, size_t group, const char *name) {
+template <typename Array> size_t groups_of(const Array &a, size_t group, const char *name) {
     if (a.size() % group != 0)
-        throw nanobind::value_error((std::string(name) + ": element count is not a multiple of " +
-                                     std::to_string(group)).c_str());
+        throw nanobind::value_error(
+            (std::string(name) + ": element count is not a multiple of " + std::to_string(group)).c_str());
     return a.size() / group;
 }
 

@@ -19,8 +19,7 @@ nb::capsule mesh_reference(ppm_mesh mesh) {
     return nb::capsule(mesh, [](void *p) noexcept { ppm_mesh_release(static_cast<ppm_mesh>(p)); });
 }
 
-template <typename T>
-nb::object view(ppm_mesh mesh, const T *data, std::initializer_list<size_t> shape) {
+template <typename T> nb::object view(ppm_mesh mesh, const T *data, std::initializer_list<size_t> shape) {
     return nb::cast(nb::ndarray<nb::numpy, const T>(data, shape, mesh_reference(mesh)));
 }
 

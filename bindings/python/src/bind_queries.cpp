@@ -78,8 +78,7 @@ void bind_queries(nb::module_ &m, nb::class_<Scene> &cls) {
         if (occluded.size() != count) throw nb::value_error("occluded: need one byte per ray");
         auto scene = s.borrow();
         nb::gil_scoped_release unlocked;
-        check(ppm_scene_occluded(scene.get(), reinterpret_cast<const ppm_ray *>(rays.data()), count,
-                                 occluded.data()));
+        check(ppm_scene_occluded(scene.get(), reinterpret_cast<const ppm_ray *>(rays.data()), count, occluded.data()));
     });
 }
 

@@ -20,8 +20,7 @@ using Vec2 = std::array<double, 2>;
 using Vec3 = std::array<double, 3>;
 
 // Runs an add call that reports a new id through its last argument.
-template <typename F>
-uint32_t new_id(F &&call) {
+template <typename F> uint32_t new_id(F &&call) {
     uint32_t id = PPM_INVALID_ID;
     check(call(&id));
     return id;
@@ -67,9 +66,8 @@ void bind_scene(nb::module_ &m) {
         return new_id([&](uint32_t *id) { return ppm_scene_add_sphere(s.get(), center.data(), radius, id); });
     });
     cls.def("add_quad", [](Scene &s, const Vec3 &origin, const Vec3 &edge_u, const Vec3 &edge_v) {
-        return new_id([&](uint32_t *id) {
-            return ppm_scene_add_quad(s.get(), origin.data(), edge_u.data(), edge_v.data(), id);
-        });
+        return new_id(
+            [&](uint32_t *id) { return ppm_scene_add_quad(s.get(), origin.data(), edge_u.data(), edge_v.data(), id); });
     });
     cls.def(
         "add_triangle_mesh",
@@ -77,13 +75,12 @@ void bind_scene(nb::module_ &m) {
            std::optional<Doubles> uvs) {
             const size_t vertices = groups_of(positions, 3, "positions");
             const size_t triangles = groups_of(indices, 3, "indices");
-            if (normals && normals->size() != 3 * vertices)
-                throw nb::value_error("normals: need 3 numbers per vertex");
+            if (normals && normals->size() != 3 * vertices) throw nb::value_error("normals: need 3 numbers per vertex");
             if (uvs && uvs->size() != 2 * vertices) throw nb::value_error("uvs: need 2 numbers per vertex");
             return new_id([&](uint32_t *id) {
                 return ppm_scene_add_triangle_mesh(s.get(), positions.data(), vertices, indices.data(), triangles,
-                                                   normals ? normals->data() : nullptr,
-                                                   uvs ? uvs->data() : nullptr, id);
+                                                   normals ? normals->data() : nullptr, uvs ? uvs->data() : nullptr,
+                                                   id);
             });
         },
         nb::arg("positions"), nb::arg("indices"), nb::arg("normals").none(), nb::arg("uvs").none());
@@ -156,9 +153,8 @@ void bind_scene(nb::module_ &m) {
         check(ppm_scene_set_patch_uv_rects(s.get(), geom_id, rects.data()));
     });
     cls.def("add_point_light", [](Scene &s, const Vec3 &position, const Vec3 &intensity) {
-        return new_id([&](uint32_t *id) {
-            return ppm_scene_add_point_light(s.get(), position.data(), intensity.data(), id);
-        });
+        return new_id(
+            [&](uint32_t *id) { return ppm_scene_add_point_light(s.get(), position.data(), intensity.data(), id); });
     });
     cls.def("add_spot_light", [](Scene &s, const Vec3 &position, const Vec3 &target, const Vec3 &intensity,
                                  double cutoff_angle, double beam_width) {

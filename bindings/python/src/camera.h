@@ -33,8 +33,14 @@ inline ppm_camera_v2 to_camera(const CameraTuple &t) {
 }
 
 inline CameraTuple from_camera(const ppm_camera_v2 &c) {
-    return {Vec3{c.origin[0], c.origin[1], c.origin[2]}, Vec3{c.target[0], c.target[1], c.target[2]},
-            Vec3{c.up[0], c.up[1], c.up[2]}, c.fov, c.width, c.height, c.aperture_radius, c.focus_distance,
+    return {Vec3{c.origin[0], c.origin[1], c.origin[2]},
+            Vec3{c.target[0], c.target[1], c.target[2]},
+            Vec3{c.up[0], c.up[1], c.up[2]},
+            c.fov,
+            c.width,
+            c.height,
+            c.aperture_radius,
+            c.focus_distance,
             c.near_clip};
 }
 

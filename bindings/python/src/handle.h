@@ -14,8 +14,7 @@
 
 namespace ppm_py {
 
-template <typename T, ppm_status (*Retain)(T), void (*Release)(T)>
-class Handle {
+template <typename T, ppm_status (*Retain)(T), void (*Release)(T)> class Handle {
 public:
     // A reference held for the duration of one call made without the GIL.
     class Borrowed {

@@ -26,10 +26,8 @@ struct Renderer : Handle<ppm_renderer, ppm_renderer_retain, ppm_renderer_release
 };
 
 // Adds close() and the read-only property `closed` to a bound handle class.
-template <typename T>
-void def_close(nanobind::class_<T> &cls) {
-    cls.def("close", [](T &self) { self.close(); })
-        .def_prop_ro("closed", [](const T &self) { return self.closed(); });
+template <typename T> void def_close(nanobind::class_<T> &cls) {
+    cls.def("close", [](T &self) { self.close(); }).def_prop_ro("closed", [](const T &self) { return self.closed(); });
 }
 
 void bind_context(nanobind::module_ &m);
