@@ -8,7 +8,7 @@ namespace bench {
 
 namespace {
 
-// The targets of issue 5 for libppm's exact intersector against the uniform mesh: speed on
+// The design targets of libppm's exact intersector against the uniform mesh: speed on
 // random rays relative to each mesh method (exact / mesh), memory relative to each (mesh /
 // exact).
 struct Target {
