@@ -306,7 +306,7 @@ static void test_counts_that_disagree_are_refused(void **state) {
     ppm_renderer_release(r);
     char crafted[320];
     snprintf(crafted, sizeof crafted, "%s/crafted.ppmckpt", f->folder);
-    /* Passes without statistics were once loaded and their counts silently dropped. */
+    /* Passes recorded without statistics are refused, not dropped. */
     craft_counts(f, crafted, 3, 15000);
     expect_load_error(f, crafted, PPM_ERROR_PARSE, "3 passes recorded but no pixel statistics");
     craft_counts(f, crafted, 0, 5000);

@@ -658,9 +658,9 @@ static void test_obj_load_after_failed_load_gets_id_zero(void **state) {
     check_loads(f, obj_file(f, "good.obj", "f 1 2 3\n"), 1, 1);
 }
 
-/* A control character other than a tab inside a line is refused where it stands: a reader
- * that took "v\r" for a vertex in one place and for an unknown word in another once let face
- * indices run past the vertex arrays. */
+/* A control character other than a tab inside a line is refused where it stands, so that no
+ * part of the reader can take "v\r" for a vertex while another takes it for an unknown word
+ * (face indices would then run past the vertex arrays). */
 static void test_obj_carriage_return_inside_vertex_line(void **state) {
     fixture *f = *state;
     check_obj_parse_error(f, write_file(f, "cr_v.obj", "v 0 0 0\nv 1 0 0\nv\r 1 1 0\nf 1 2 3\n"), 3);

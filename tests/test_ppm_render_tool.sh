@@ -66,8 +66,8 @@ printf '{"shapes": [{"type": "obj", "filename": "nowhere.obj"}]}' >noobj.json
 expect 2 "file not found" -- noobj.json
 
 # --- a render: every output format, layers, nothing temporary left ---------------------------
-expect 0 "4 passes" -- "$scene" -o box.png -o box.exr -o box.jpg --layers radius,photons
-for f in box.png box.exr box.jpg; do
+expect 0 "4 passes" -- "$scene" -o box.png -o box.exr -o box.jpg -o box.tif --layers radius,photons
+for f in box.png box.exr box.jpg box.tif; do
   [[ -s $f ]] || fail "$f was not written"
 done
 if ls -a | grep -q '\.tmp-'; then fail "temporary files left: $(ls -a)"; fi

@@ -290,12 +290,12 @@ static void test_unreadable_bytes_and_deep_nesting(void **state) {
     write_text(f->path, text);
     assert_int_equal(ppm_scene_file_load(f->context, f->path, &file), PPM_OK);
     ppm_scene_file_release(file);
-    /* Bytes after a NUL that follows the value were once ignored. */
+    /* A NUL byte anywhere is refused, also after a complete value. */
     static const char after_nul[] = "{\"shapes\": [{\"type\": \"sphere\"}]}\0{garbage";
     expect_bytes_error(f, after_nul, sizeof after_nul - 1, "scene.json:1:33: NUL byte in the file");
     static const char nul_in_string[] = "{\"shapes\": [{\"type\": \"sph\0ere\"}]}";
     expect_bytes_error(f, nul_in_string, sizeof nul_in_string - 1, "scene.json:1:26: NUL byte in the file");
-    /* An escaped NUL inside a file name would name another file once passed on as a C string. */
+    /* An escaped NUL inside a file name would name another file when passed on as a C string. */
     EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"obj\", \"filename\": \"a.obj\\u0000.png\"}]}", PPM_ERROR_PARSE,
                  "shapes[0].filename: a string must not contain a NUL character");
 }

@@ -6,8 +6,8 @@
 #include "api/api_support.h"
 #include "geometry/bezier.h"
 #include "geometry/chord_slope.h"
-#include "geometry/patch_geometry.h"
 #include "io/bpt_reader.h"
+#include "scene/patch_geometry.h"
 #include "scene/spawn.h"
 
 #include <ppm/ppm.h>

@@ -8,15 +8,15 @@
 #include "core/context.h"
 #include "core/error.h"
 #include "core/ref_counted.h"
-#include "geometry/mesh_geometry.h"
-#include "geometry/patch_geometry.h"
-#include "geometry/quad_geometry.h"
-#include "geometry/sphere_geometry.h"
 #include "geometry/tessellate.h"
 #include "io/bpt_reader.h"
 #include "io/obj_reader.h"
+#include "scene/mesh_geometry.h"
+#include "scene/patch_geometry.h"
+#include "scene/quad_geometry.h"
 #include "scene/scene.h"
 #include "scene/spawn.h"
+#include "scene/sphere_geometry.h"
 
 #include <cstring>
 #include <new>
@@ -50,8 +50,8 @@ std::vector<ppm::BezierPatch> read_patches(const double *control_points, size_t 
 // `make` validates its input and returns the new geometry (or throws).
 // Throws INVALID_ARGUMENT unless the geometry's box under `transform` lies within the
 // coordinate limit (math/limits.h), so that commit never meets an overflowing box.
-void check_world_box(ppm::Geometry &geometry, const ppm::Affine &transform) {
-    const ppm::Box3 box = geometry.prepare(transform);
+void check_world_box(const ppm::Geometry &geometry, const ppm::Affine &transform) {
+    const ppm::Box3 box = geometry.world_bounds(transform);
     for (const double v : {box.lower.x, box.lower.y, box.lower.z, box.upper.x, box.upper.y, box.upper.z})
         if (!ppm::within(v, ppm::kCoordinateLimit))
             invalid_argument(std::string("the bounding box of the ") + geometry.kind() + " reaches the coordinate " +

@@ -4,9 +4,9 @@
 #include "api/api_camera.h"
 #include "api/api_renderer.h"
 #include "api/api_support.h"
-#include "geometry/patch_geometry.h"
-#include "geometry/quad_geometry.h"
-#include "geometry/sphere_geometry.h"
+#include "scene/patch_geometry.h"
+#include "scene/quad_geometry.h"
+#include "scene/sphere_geometry.h"
 
 #include <cmath>
 #include <cstring>
@@ -41,9 +41,9 @@ ppm::Rgb read_reflectance(const double *c, const char *name) {
 }
 
 template <class Make> ppm_status add_material(ppm_scene scene, uint32_t *out_id, Make &&make) {
-    return scene_call(scene, [&](ppm::Scene &s) {
+    return scene_call(scene, [&](ppm_scene_t &s) {
         ppm::Material material{make(), nullptr, {}};
-        write_id(out_id, s.add_material(std::move(material)));
+        write_id(out_id, s.shading.add_material(std::move(material)));
     });
 }
 
@@ -111,9 +111,9 @@ ppm_status ppm_scene_add_coated_material(ppm_scene scene, const double diffuse_r
 
 ppm_status ppm_scene_set_material_texture(ppm_scene scene, uint32_t material_id, const char *path,
                                           const double scale[2], const double offset[2]) {
-    return scene_call(scene, [&](ppm::Scene &s) {
+    return scene_call(scene, [&](ppm_scene_t &s) {
         require(path, "path");
-        ppm::Material &material = s.material(material_id);
+        ppm::Material &material = s.shading.material(material_id);
         if (material.bsdf.type() == ppm::Bsdf::Type::Dielectric)
             invalid_argument("material " + std::to_string(material_id) + " is glass, which has no colour to texture");
         ppm::TextureMapping mapping;
@@ -149,19 +149,19 @@ ppm_status ppm_scene_set_patch_uv_rects(ppm_scene scene, uint32_t geom_id, const
 
 ppm_status ppm_scene_add_point_light(ppm_scene scene, const double position[3], const double intensity[3],
                                      uint32_t *out_light_id) {
-    return scene_call(scene, [&](ppm::Scene &s) {
+    return scene_call(scene, [&](ppm_scene_t &s) {
         const ppm::Vec3 p = finite_point(position, "position");
-        write_id(out_light_id, s.add_light(ppm::Light::point(p, read_emission(intensity, "intensity"))));
+        write_id(out_light_id, s.shading.add_light(ppm::Light::point(p, read_emission(intensity, "intensity"))));
     });
 }
 
 ppm_status ppm_scene_add_spot_light(ppm_scene scene, const double position[3], const double target[3],
                                     const double intensity[3], double cutoff_angle, double beam_width,
                                     uint32_t *out_light_id) {
-    return scene_call(scene, [&](ppm::Scene &s) {
+    return scene_call(scene, [&](ppm_scene_t &s) {
         const ppm::Vec3 p = finite_point(position, "position"), t = finite_point(target, "target");
-        write_id(out_light_id,
-                 s.add_light(ppm::Light::spot(p, t, read_emission(intensity, "intensity"), cutoff_angle, beam_width)));
+        write_id(out_light_id, s.shading.add_light(ppm::Light::spot(p, t, read_emission(intensity, "intensity"),
+                                                                    cutoff_angle, beam_width)));
     });
 }
 
@@ -179,14 +179,14 @@ ppm_status ppm_scene_set_geometry_emission(ppm_scene scene, uint32_t geom_id, co
 /* Renderer ---------------------------------------------------------------------------- */
 
 ppm_status ppm_renderer_create(ppm_scene scene, const ppm_camera *camera, ppm_renderer *out_renderer) {
-    return scene_call(scene, [&](ppm::Scene &s) {
+    return scene_call(scene, [&](ppm_scene_t &s) {
         require(out_renderer, "out_renderer");
         *out_renderer = new ppm_renderer_t(s, camera_settings(camera));
     });
 }
 
 ppm_status ppm_renderer_create_v2(ppm_scene scene, const ppm_camera_v2 *camera, ppm_renderer *out_renderer) {
-    return scene_call(scene, [&](ppm::Scene &s) {
+    return scene_call(scene, [&](ppm_scene_t &s) {
         require(out_renderer, "out_renderer");
         *out_renderer = new ppm_renderer_t(s, camera_settings(camera));
     });

@@ -5,8 +5,8 @@
 #include "render/renderer.h"
 
 struct ppm_renderer_t : ppm::Renderer {
-    ppm_renderer_t(ppm::Scene &scene, const ppm::CameraSettings &camera_settings)
-        : Renderer(scene, camera_settings), camera(camera_settings) {}
+    ppm_renderer_t(ppm_scene_t &scene, const ppm::CameraSettings &camera_settings)
+        : Renderer(scene, scene.shading, camera_settings), camera(camera_settings) {}
 
     // The camera as given, for ppm_renderer_get_camera_v2; never changes, so it may be read
     // during a pass.

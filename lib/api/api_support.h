@@ -8,14 +8,17 @@
 #include "core/error.h"
 #include "math/limits.h"
 #include "math/vec3.h"
+#include "render/scene_shading.h"
 #include "scene/scene.h"
 
 #include <new>
 #include <string>
 
 struct ppm_context_t : ppm::Context {};
+// The scene handle: the geometry (scene layer) and what the renderer adds to it.
 struct ppm_scene_t : ppm::Scene {
     using Scene::Scene;
+    ppm::SceneShading shading;
 };
 
 namespace ppm::api {

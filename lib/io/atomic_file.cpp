@@ -43,8 +43,9 @@ void write_file_atomically(const std::string &path, const void *data, std::size_
     if (fchmod(fd, 0644) != 0) give_up("cannot set permissions");
     if (fsync(fd) != 0) give_up("cannot flush to disk");
     if (close(fd) != 0) {
+        const int error = errno;
         std::remove(temp_name.c_str());
-        fail(PPM_ERROR_IO, path + ": write error: " + std::strerror(errno));
+        fail(PPM_ERROR_IO, path + ": write error: " + std::strerror(error));
     }
     if (std::rename(temp_name.c_str(), path.c_str()) != 0) {
         const int error = errno;

@@ -17,8 +17,8 @@ namespace ppm {
 namespace {
 
 // One pass over the text that both checks and reads, so that what is validated is exactly
-// what is used: a separate validator next to a lenient parser once disagreed with it about
-// what separates words and let face indices point past the arrays.
+// what is used: no second tokenizer can disagree about what separates words and let a face
+// index point past the arrays.
 //
 // Words are separated by spaces and tabs only; a line ends at "\n" (a "\r" just before it is
 // dropped). Any other control character is an error, so that no byte is silently read as a

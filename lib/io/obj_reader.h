@@ -3,7 +3,7 @@
 // coordinates are kept when every face corner has them.
 #pragma once
 
-#include "geometry/mesh_geometry.h"
+#include "geometry/mesh_data.h"
 
 #include <string>
 

@@ -14,7 +14,7 @@
 // N_e averages them.
 #pragma once
 
-#include "render/rgb.h"
+#include "math/rgb.h"
 
 #include <atomic>
 #include <cstddef>

@@ -26,8 +26,8 @@
 // surface's normal must point outwards. wo.z == 0 scatters nothing.
 #pragma once
 
+#include "math/rgb.h"
 #include "math/vec3.h"
-#include "render/rgb.h"
 
 #include <cstdint>
 

@@ -131,7 +131,8 @@ void Renderer::check_statistics(const std::string &path, const std::vector<Pixel
     for (std::size_t i = 0; i < stats.size(); ++i) {
         const PixelStatistics &s = stats[i];
         if (!(s.n >= 0 && s.n <= most_photons))
-            bad(i, "photon count N", s.n, "must lie in [0, photons emitted x 1000]");
+            bad(i, "photon count N", s.n,
+                ("must lie in [0, photons emitted x " + std::to_string(kMaxDepthLimit) + "]").c_str());
         if (!(s.r2 >= 0 && s.r2 <= largest_r2))
             bad(i, "radius squared", s.r2, "must lie in [0, the largest initial radius squared]");
         if (s.n > 0 && !(s.r2 > 0)) bad(i, "radius squared", s.r2, "must be > 0 where photons were found");
@@ -170,8 +171,8 @@ std::uint64_t Renderer::scene_hash() const {
         h.add(geometry.emission);
     }
     h.add(scene_->bounds().lower), h.add(scene_->bounds().upper);
-    h.add(scene_->materials().size());
-    h.add(scene_->lights().size());
+    h.add(material_count_);
+    h.add(point_light_count_);
     h.add(render_scene_.total_power());
     return h.value();
 }

@@ -10,8 +10,8 @@
 #pragma once
 
 #include "math/frame.h"
+#include "math/rgb.h"
 #include "math/vec3.h"
-#include "render/rgb.h"
 
 #include <cstdint>
 

@@ -1,8 +1,8 @@
 #include "render/render_scene.h"
 
 #include "core/error.h"
-#include "geometry/quad_geometry.h"
-#include "geometry/sphere_geometry.h"
+#include "scene/quad_geometry.h"
+#include "scene/sphere_geometry.h"
 
 #include <algorithm>
 
@@ -31,23 +31,23 @@ Light area_light(const Geometry &g, uint32_t geom_id, double offset) {
 
 } // namespace
 
-RenderScene::RenderScene(const Scene &scene) : scene_(&scene) {
+RenderScene::RenderScene(const Scene &scene, const SceneShading &shading) : scene_(&scene) {
     if (!scene.committed()) fail(PPM_ERROR_INVALID_OPERATION, "the scene must be committed before rendering");
     const Material grey{Bsdf::diffuse(Rgb(0.5)), nullptr, {}};
     // Photons leave area lights a little more than a hit's error bound off the surface.
     const double offset =
         4 * scene.absolute_tolerance() + 1e-12 * max_abs_component(scene.bounds().upper - scene.bounds().lower);
-    lights_ = scene.lights();
+    lights_ = shading.lights();
     for (uint32_t id = 0; id < scene.geometry_count(); ++id) {
         const Geometry &g = scene.geometry(id);
-        if (scene.materials().empty()) {
+        if (shading.materials().empty()) {
             geometry_materials_.push_back(grey);
-        } else if (g.material < scene.materials().size()) {
-            geometry_materials_.push_back(scene.materials()[g.material]);
+        } else if (g.material < shading.materials().size()) {
+            geometry_materials_.push_back(shading.materials()[g.material]);
         } else {
             invalid_argument("geometry " + std::to_string(id) + " (" + g.kind() + ") has material id " +
                              std::to_string(g.material) + ", but the scene has only " +
-                             std::to_string(scene.materials().size()) + " materials");
+                             std::to_string(shading.materials().size()) + " materials");
         }
         if (!g.emission.is_black()) lights_.push_back(area_light(g, id, offset));
     }

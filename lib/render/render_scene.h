@@ -8,6 +8,7 @@
 #include "render/bsdf.h"
 #include "render/light.h"
 #include "render/material.h"
+#include "render/scene_shading.h"
 #include "scene/scene.h"
 
 #include <vector>
@@ -31,7 +32,7 @@ public:
     // for a geometry whose material id names no material (when the scene has materials; a
     // scene without any renders everything diffuse grey 0.5) or emission on a kind other
     // than quad and sphere.
-    explicit RenderScene(const Scene &scene);
+    RenderScene(const Scene &scene, const SceneShading &shading);
 
     const Scene &scene() const { return *scene_; }
     const std::vector<Light> &lights() const { return lights_; }

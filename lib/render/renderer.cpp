@@ -23,8 +23,9 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 } // namespace
 
-Renderer::Renderer(Scene &scene, const CameraSettings &camera)
-    : scene_(&scene), render_scene_(scene), camera_settings_(camera), camera_(camera) {
+Renderer::Renderer(Scene &scene, const SceneShading &shading, const CameraSettings &camera)
+    : scene_(&scene), render_scene_(scene, shading), camera_settings_(camera), camera_(camera),
+      material_count_(shading.materials().size()), point_light_count_(shading.lights().size()) {
     const std::uint64_t pixels = static_cast<std::uint64_t>(camera_.width()) * camera_.height();
     if (pixels > (std::uint64_t(1) << 28))
         invalid_argument("image of " + std::to_string(camera_.width()) + " x " + std::to_string(camera_.height()) +

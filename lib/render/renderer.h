@@ -80,9 +80,10 @@ struct PhotonHit {
 
 class Renderer : public RefCounted {
 public:
-    // Keeps the scene alive. Throws ppm::Error for an uncommitted scene, bad camera settings
-    // or materials (see RenderScene, Camera).
-    Renderer(Scene &scene, const CameraSettings &camera);
+    // Keeps the scene alive; copies what it needs of `shading` (the scene's materials and
+    // lights). Throws ppm::Error for an uncommitted scene, bad camera settings or materials
+    // (see RenderScene, Camera).
+    Renderer(Scene &scene, const SceneShading &shading, const CameraSettings &camera);
     ~Renderer() override;
 
     Context &context() const { return scene_->context(); }
@@ -167,6 +168,7 @@ private:
     RenderScene render_scene_;
     CameraSettings camera_settings_;
     Camera camera_;
+    std::size_t material_count_, point_light_count_; // of the scene's shading, for scene_hash()
     RenderSettings settings_;
 
     // Slots: one per pixel in SPPM, one per split camera path in PPM (set by the first pass).

@@ -105,7 +105,10 @@ void check_exr_header_fits(const std::string &path) {
 
 // The largest ratio of decoded to stored bytes of the codecs image files use: DEFLATE (PNG,
 // EXR's ZIP) expands at most 1032:1; RLE, PIZ and JPEG less.
+// Below kMaxTrustedDecode any header is believed: packed 1-bit or palette PNGs and GIF's LZW
+// can expand further than DEFLATE's bound on 8-bit samples.
 constexpr double kMaxExpansion = 1032;
+constexpr double kMaxTrustedDecode = 256.0 * 1024 * 1024;
 
 } // namespace
 
@@ -125,7 +128,7 @@ std::shared_ptr<const Texture> Texture::load(const std::string &path) {
     struct stat info {};
     const double file_bytes = stat(path.c_str(), &info) == 0 ? static_cast<double>(info.st_size) : 0;
     const double decoded_bytes = static_cast<double>(pixels) * spec.nchannels * spec.format.size();
-    if (decoded_bytes > kMaxExpansion * std::max(file_bytes, 1.0))
+    if (decoded_bytes > kMaxTrustedDecode && decoded_bytes > kMaxExpansion * std::max(file_bytes, 1.0))
         fail(PPM_ERROR_PARSE, "texture '" + path + "': its header claims " + std::to_string(spec.width) + " x " +
                                   std::to_string(spec.height) + " pixels, more than its " +
                                   std::to_string(static_cast<long long>(file_bytes)) + " bytes can hold");

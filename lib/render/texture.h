@@ -10,7 +10,7 @@
 // its left column; (u, v) outside [0, 1) repeat.
 #pragma once
 
-#include "render/rgb.h"
+#include "math/rgb.h"
 
 #include <memory>
 #include <string>

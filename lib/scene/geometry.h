@@ -4,8 +4,8 @@
 
 #include <ppm/ppm.h>
 
+#include "math/rgb.h"
 #include "math/vec3.h"
-#include "render/rgb.h"
 #include "scene/ray_query.h"
 
 #include <embree3/rtcore.h>
@@ -38,6 +38,9 @@ public:
     // Throws INVALID_ARGUMENT (naming the geometry) if this kind cannot take the transform.
     virtual void check_transform(const Affine &transform) const { (void)transform; }
 
+    // The bounds prepare(transform) would return, without changing anything (a committed
+    // scene's queries read the prepared data).
+    virtual Box3 world_bounds(const Affine &transform) const = 0;
     // Commit, step 1: applies the transform to the stored data; returns world bounds.
     virtual Box3 prepare(const Affine &transform) = 0;
     // Commit, step 2: a new Embree geometry (committed, not attached) for the prepared data.

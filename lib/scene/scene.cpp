@@ -89,25 +89,6 @@ Geometry &Scene::geometry(uint32_t geom_id) const {
     return *geometries_[geom_id];
 }
 
-uint32_t Scene::add_material(Material material) {
-    if (materials_.size() >= PPM_INVALID_ID - 1) invalid_argument("too many materials in a scene");
-    materials_.push_back(std::move(material));
-    return static_cast<uint32_t>(materials_.size() - 1);
-}
-
-Material &Scene::material(uint32_t material_id) {
-    if (material_id >= materials_.size())
-        invalid_argument("material id " + std::to_string(material_id) + " does not exist (the scene has " +
-                         std::to_string(materials_.size()) + " materials)");
-    return materials_[material_id];
-}
-
-uint32_t Scene::add_light(Light light) {
-    if (lights_.size() >= PPM_INVALID_ID - 1) invalid_argument("too many lights in a scene");
-    lights_.push_back(light);
-    return static_cast<uint32_t>(lights_.size() - 1);
-}
-
 void Scene::set_tolerance(double relative) {
     if (!(relative >= 1e-14 && relative <= 1e-2))
         invalid_argument("tolerance " + format_number(relative) + " is outside [1e-14, 1e-2]");

@@ -5,10 +5,8 @@
 #include <ppm/ppm.h>
 
 #include "core/context.h"
-#include "geometry/sphere_set.h"
-#include "render/light.h"
-#include "render/material.h"
 #include "scene/geometry.h"
+#include "scene/sphere_set.h"
 
 #include <memory>
 #include <vector>
@@ -25,14 +23,6 @@ public:
     uint32_t add(std::unique_ptr<Geometry> geometry);
     Geometry &geometry(uint32_t geom_id) const; // throws INVALID_ARGUMENT for a bad id
     size_t geometry_count() const { return geometries_.size(); }
-
-    // Materials (ids index this list) and the lights that are not shapes (point, spot); area
-    // lights are geometries with an emission.
-    uint32_t add_material(Material material);
-    Material &material(uint32_t material_id); // throws INVALID_ARGUMENT for a bad id
-    const std::vector<Material> &materials() const { return materials_; }
-    uint32_t add_light(Light light);
-    const std::vector<Light> &lights() const { return lights_; }
 
     void set_tolerance(double relative);
     double tolerance() const { return tolerance_; }
@@ -86,8 +76,6 @@ private:
 
     Context *context_;
     std::vector<std::unique_ptr<Geometry>> geometries_;
-    std::vector<Material> materials_;
-    std::vector<Light> lights_;
     double tolerance_ = 1e-9;
     int patch_presplit_ = EmbreeFrame{}.patch_presplit;
 

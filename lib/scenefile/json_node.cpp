@@ -35,36 +35,27 @@ std::string first_jsoncpp_error(const std::string &path, const std::string &erro
 // it (its own stack limit throws an exception that carries no position).
 constexpr int kMaxNesting = 64;
 
-// The offset of the first NUL byte, or of the bracket that opens level kMaxNesting + 1, outside
-// strings and comments; npos if there is none. `what` says which.
+// The offset of the first NUL byte anywhere, or else of the bracket that opens level
+// kMaxNesting + 1 outside strings and comments; npos if there is none. `what` says which.
 std::size_t first_unreadable_byte(const std::string &text, std::string &what) {
+    const std::size_t nul = text.find('\0');
+    if (nul != std::string::npos) {
+        what = "NUL byte in the file";
+        return nul;
+    }
     int depth = 0;
     for (std::size_t i = 0; i < text.size(); ++i) {
         const char c = text[i];
-        if (c == '\0') {
-            what = "NUL byte in the file";
-            return i;
-        }
         if (c == '"') {
-            for (++i; i < text.size() && text[i] != '"'; ++i) {
-                if (text[i] == '\0') {
-                    what = "NUL byte in the file";
-                    return i;
-                }
+            for (++i; i < text.size() && text[i] != '"'; ++i)
                 if (text[i] == '\\') ++i;
-            }
         } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') {
             i = text.find('\n', i);
             if (i == std::string::npos) break;
         } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
-            const std::size_t end = text.find("*/", i + 2);
-            if (end == std::string::npos) break;
-            const std::size_t nul = text.find('\0', i);
-            if (nul < end) {
-                what = "NUL byte in the file";
-                return nul;
-            }
-            i = end + 1;
+            i = text.find("*/", i + 2);
+            if (i == std::string::npos) break;
+            ++i;
         } else if (c == '[' || c == '{') {
             if (++depth > kMaxNesting) {
                 what = "arrays and objects nested more than " + std::to_string(kMaxNesting) + " levels deep";

@@ -38,7 +38,7 @@ void write_bytes_atomically(const std::string &path, const void *data, std::size
         if (n < 0 && errno == EINTR) continue;
         if (n < 0) close_and_give_up("write error");
         if (n == 0) {
-            errno = EIO; // a write that makes no progress would loop forever
+            errno = ENOSPC; // a write that makes no progress would loop forever
             close_and_give_up("write error");
         }
         written += static_cast<std::size_t>(n);

@@ -18,6 +18,7 @@ public:
 
     const char *kind() const override { return "Bezier patches"; }
     size_t primitive_count() const override { return source_.size(); }
+    Box3 world_bounds(const Affine &transform) const override;
     Box3 prepare(const Affine &transform) override;
     RTCGeometry create_embree(RTCDevice device, const EmbreeFrame &frame) override;
     void describe_hit(const RayQuery &query, double tolerance, ppm_hit &hit) const override;

@@ -4,8 +4,8 @@
 // lanes.
 #pragma once
 
-#include "geometry/sphere_geometry.h"
 #include "scene/ray_query.h"
+#include "scene/sphere_geometry.h"
 
 namespace ppm {
 

@@ -1,4 +1,4 @@
-#include "geometry/sphere_geometry.h"
+#include "scene/sphere_geometry.h"
 
 #include "core/error.h"
 #include "scene/user_geometry.h"
@@ -94,6 +94,15 @@ void SphereGeometry::check_transform(const Affine &transform) const {
     if (std::fabs(lx - ly) > tolerance || std::fabs(lx - lz) > tolerance || std::fabs(dot(x, y)) > tolerance * lx ||
         std::fabs(dot(y, z)) > tolerance * ly || std::fabs(dot(x, z)) > tolerance * lx)
         invalid_argument("a sphere takes only rotations, translations and uniform scaling");
+}
+
+Box3 SphereGeometry::world_bounds(const Affine &transform) const {
+    const Vec3 center = transform.point(source_center_);
+    const double radius = source_radius_ * length(transform.vector({1, 0, 0}));
+    Box3 box;
+    box.extend(center - Vec3{1, 1, 1} * radius);
+    box.extend(center + Vec3{1, 1, 1} * radius);
+    return box;
 }
 
 Box3 SphereGeometry::prepare(const Affine &transform) {

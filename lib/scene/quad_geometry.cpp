@@ -1,4 +1,4 @@
-#include "geometry/quad_geometry.h"
+#include "scene/quad_geometry.h"
 
 #include "scene/user_geometry.h"
 
@@ -34,6 +34,13 @@ void quad_bounds(const RTCBoundsFunctionArguments *args) {
 
 QuadGeometry::QuadGeometry(const Vec3 &origin, const Vec3 &edge_u, const Vec3 &edge_v)
     : source_{origin, edge_u, edge_v} {}
+
+Box3 QuadGeometry::world_bounds(const Affine &transform) const {
+    const Vec3 origin = transform.point(source_[0]), u = transform.vector(source_[1]), v = transform.vector(source_[2]);
+    Box3 box;
+    for (const Vec3 &corner : {origin, origin + u, origin + v, origin + u + v}) box.extend(corner);
+    return box;
+}
 
 Box3 QuadGeometry::prepare(const Affine &transform) {
     Data &q = data_;

@@ -2,6 +2,7 @@
 // recomputes each candidate hit in double precision and keeps the closest in the RayQuery.
 #pragma once
 
+#include "geometry/mesh_data.h"
 #include "scene/geometry.h"
 
 #include <cstdint>
@@ -9,19 +10,13 @@
 
 namespace ppm {
 
-struct MeshData {
-    std::vector<Vec3> positions;
-    std::vector<uint32_t> indices; // 3 per triangle
-    std::vector<Vec3> normals;     // empty or one per vertex
-    std::vector<double> uvs;       // empty or two per vertex
-};
-
 class MeshGeometry : public Geometry {
 public:
     explicit MeshGeometry(MeshData mesh);
 
     const char *kind() const override { return "triangle mesh"; }
     size_t primitive_count() const override { return source_.indices.size() / 3; }
+    Box3 world_bounds(const Affine &transform) const override;
     Box3 prepare(const Affine &transform) override;
     RTCGeometry create_embree(RTCDevice device, const EmbreeFrame &frame) override;
     void describe_hit(const RayQuery &query, double tolerance, ppm_hit &hit) const override;

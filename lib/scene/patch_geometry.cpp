@@ -1,4 +1,4 @@
-#include "geometry/patch_geometry.h"
+#include "scene/patch_geometry.h"
 
 #include "geometry/chord_slope.h"
 #include "geometry/patch_intersector.h"
@@ -182,6 +182,13 @@ PatchGeometry::SubPatch make_sub_patch(const BezierPatch &patch, const IntervalM
 } // namespace
 
 PatchGeometry::PatchGeometry(std::vector<BezierPatch> patches) : source_(std::move(patches)) {}
+
+Box3 PatchGeometry::world_bounds(const Affine &transform) const {
+    Box3 bounds;
+    for (const BezierPatch &patch : source_)
+        for (const Vec3 &p : patch.p) bounds.extend(transform.point(p));
+    return bounds;
+}
 
 Box3 PatchGeometry::prepare(const Affine &transform) {
     // Under the identity the source patches are the world patches; a copy would double the

@@ -1,4 +1,4 @@
-#include "geometry/sphere_set.h"
+#include "scene/sphere_set.h"
 
 #include "core/error.h"
 

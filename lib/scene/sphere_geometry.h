@@ -12,6 +12,7 @@ public:
     const char *kind() const override { return "sphere"; }
     size_t primitive_count() const override { return 1; }
     void check_transform(const Affine &transform) const override;
+    Box3 world_bounds(const Affine &transform) const override;
     Box3 prepare(const Affine &transform) override;
     RTCGeometry create_embree(RTCDevice device, const EmbreeFrame &frame) override;
     void describe_hit(const RayQuery &query, double tolerance, ppm_hit &hit) const override;

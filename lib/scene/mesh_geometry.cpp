@@ -1,4 +1,4 @@
-#include "geometry/mesh_geometry.h"
+#include "scene/mesh_geometry.h"
 
 #include <cfloat>
 
@@ -45,6 +45,12 @@ void mesh_filter(const RTCFilterFunctionNArguments *args) {
 } // namespace
 
 MeshGeometry::MeshGeometry(MeshData mesh) : source_(std::move(mesh)) {}
+
+Box3 MeshGeometry::world_bounds(const Affine &transform) const {
+    Box3 bounds;
+    for (const Vec3 &p : source_.positions) bounds.extend(transform.point(p));
+    return bounds;
+}
 
 Box3 MeshGeometry::prepare(const Affine &transform) {
     world_ = source_;

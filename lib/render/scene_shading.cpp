@@ -1,0 +1,28 @@
+#include "render/scene_shading.h"
+
+#include "core/error.h"
+
+#include <string>
+
+namespace ppm {
+
+uint32_t SceneShading::add_material(Material material) {
+    if (materials_.size() >= PPM_INVALID_ID - 1) invalid_argument("too many materials in a scene");
+    materials_.push_back(std::move(material));
+    return static_cast<uint32_t>(materials_.size() - 1);
+}
+
+Material &SceneShading::material(uint32_t material_id) {
+    if (material_id >= materials_.size())
+        invalid_argument("material id " + std::to_string(material_id) + " does not exist (the scene has " +
+                         std::to_string(materials_.size()) + " materials)");
+    return materials_[material_id];
+}
+
+uint32_t SceneShading::add_light(Light light) {
+    if (lights_.size() >= PPM_INVALID_ID - 1) invalid_argument("too many lights in a scene");
+    lights_.push_back(light);
+    return static_cast<uint32_t>(lights_.size() - 1);
+}
+
+} // namespace ppm
