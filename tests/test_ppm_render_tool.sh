@@ -65,6 +65,16 @@ expect 2 "cut.json:1:" -- cut.json
 printf '{"shapes": [{"type": "obj", "filename": "nowhere.obj"}]}' >noobj.json
 expect 2 "file not found" -- noobj.json
 
+# --- what the banner says before rendering -------------------------------------------------
+printf '{"shapes": [{"type": "sphere"}], "sensor": {"film": {"width": 8, "height": 6}}}' >dark.json
+expect 0 "dark.json has no light source" -- dark.json --passes 1 --photons 100 -o dark.png
+expect 0 "3 passes or 60.0 s, whichever ends first" -- "$scene" --passes 3 --time 60 --photons 100 -o both.png
+if grep -q "no light source" < <("$render" "$scene" --passes 1 --photons 100 -o lit.png 2>&1); then
+  fail "a scene with a light was warned about"
+else
+  echo "ok: no warning for a lit scene"
+fi
+
 # --- a render: every output format, layers, nothing temporary left ---------------------------
 expect 0 "4 passes" -- "$scene" -o box.png -o box.exr -o box.jpg -o box.tif --layers radius,photons
 for f in box.png box.exr box.jpg box.tif; do

@@ -794,6 +794,16 @@ static void test_tool_errors(void **state) {
     const char *bad_option[] = {PPM_TEAPOT, "-o", out, "--frobnicate", NULL};
     assert_int_equal(run_tool(f, bad_option), 1);
     assert_true(stderr_contains(f, "--frobnicate"));
+    /* An output whose extension names no format ppm-tess writes is a usage error, not OBJ
+     * text under another name. */
+    char stl[600];
+    snprintf(stl, sizeof stl, "%s/out.stl", f->dir);
+    const char *stl_output[] = {PPM_TEAPOT, "-o", stl, NULL};
+    assert_int_equal(run_tool(f, stl_output), 1);
+    assert_true(stderr_contains(f, "must end in .obj or .ply"));
+    assert_int_equal(access(stl, F_OK), -1);
+    const char *ply_flag_obj_name[] = {PPM_TEAPOT, "-o", out, "--ply", NULL};
+    assert_int_equal(run_tool(f, ply_flag_obj_name), 1);
     const char *bad_number[] = {PPM_TEAPOT, "-o", out, "--tolerance", "abc", NULL};
     assert_int_equal(run_tool(f, bad_number), 1);
     const char *no_input[] = {missing, "-o", out, NULL};

@@ -520,7 +520,8 @@ PPM_API void ppm_renderer_release(ppm_renderer renderer);
  * Typed settings as described at the top of this header. mode, seed, direct_lighting and
  * the initial radius settings are fixed after the first pass (INVALID_OPERATION); unknown
  * keys, wrong types and values out of range are INVALID_ARGUMENT. Read-only ints: "passes",
- * "photons_emitted", "width", "height"; read-only doubles: "last_eye_pass_seconds",
+ * "photons_emitted", "width", "height", "lights" (the light sources photons leave: point,
+ * spot and area lights; 0 renders black); read-only doubles: "last_eye_pass_seconds",
  * "last_photon_pass_seconds" (wall clock), and "last_search_build_seconds", the part of the
  * eye pass spent building the hit point search. Thread safety: not during ppm_render_pass
  * of the same renderer; getters concurrently with other getters. */

@@ -58,6 +58,8 @@ bool read_only_int(const ppm::Renderer &r, const std::string &key, int64_t *out)
         *out = r.width();
     else if (key == "height")
         *out = r.height();
+    else if (key == "lights")
+        *out = static_cast<int64_t>(r.light_count());
     else
         return false;
     return true;

@@ -101,6 +101,8 @@ public:
     int height() const { return camera_.height(); }
     std::uint64_t passes() const { return passes_.load(); }
     std::uint64_t photons_emitted() const { return photons_emitted_.load(); }
+    // Point, spot and area lights: the sources photons leave (none: the image is black).
+    std::size_t light_count() const { return render_scene_.lights().size(); }
     double last_eye_seconds() const { return last_eye_seconds_; }
     // The part of last_eye_seconds() spent building the hit point grid or tree.
     double last_search_build_seconds() const { return last_search_build_seconds_; }

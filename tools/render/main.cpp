@@ -159,13 +159,24 @@ int render(const Options &options, SignalWatcher &signals) {
         std::fprintf(stderr, "ppm-render: %s: %lld x %lld, %s, %lld photons/pass, ", options.scene.c_str(),
                      static_cast<long long>(width), static_cast<long long>(height), mode,
                      static_cast<long long>(photons_per_pass));
-        if (target > 0)
+        if (target > 0 && budget > 0)
+            std::fprintf(stderr, "%llu passes or %.1f s, whichever ends first", static_cast<unsigned long long>(target),
+                         budget);
+        else if (target > 0)
             std::fprintf(stderr, "%llu passes", static_cast<unsigned long long>(target));
         else
             std::fprintf(stderr, "passes until %.1f s", budget);
         if (passes > 0) std::fprintf(stderr, " (resuming after pass %lld)", static_cast<long long>(passes));
         std::fprintf(stderr, ", %lld threads\n", static_cast<long long>(threads));
     }
+
+    int64_t lights = 0;
+    check(ppm_renderer_get_int(renderer, "lights", &lights));
+    if (lights == 0)
+        std::fprintf(stderr,
+                     "ppm-render: warning: %s has no light source (no emitter, no shape with an "
+                     "emitter): the image will be black\n",
+                     options.scene.c_str());
 
     signals.start([renderer] { ppm_renderer_cancel(renderer); });
     const Clock::time_point start = Clock::now();

@@ -28,7 +28,7 @@ const char *const usage_text = "usage: ppm-tess INPUT -o OUTPUT.obj [options]\n"
                                "options:\n"
                                "  -o, --output PATH   output file: OBJ (v, vt, vn, f v/vt/vn; seam vertices welded;\n"
                                "                      vt = patch (u, 1 - v), the OBJ convention),\n"
-                               "                      or PLY when PATH ends in .ply or with --ply\n"
+                               "                      or PLY when PATH ends in .ply (no other extension)\n"
                                "  --tolerance E       largest distance from the surface, absolute (default: 1e-3\n"
                                "                      of the bounding-box diagonal of the control points)\n"
                                "  --relative          E is relative to that diagonal\n"
@@ -102,7 +102,12 @@ Options parse_arguments(int argc, char **argv) {
     if (o.grid && (o.tolerance_given || o.relative_given))
         throw UsageError("--grid and --tolerance/--relative exclude each other");
     if (o.tolerance_given) o.relative = o.relative_given;
-    if (ends_with(o.output, ".ply") || ends_with(o.output, ".PLY")) o.ply = true;
+    const bool ply_name = ends_with(o.output, ".ply") || ends_with(o.output, ".PLY");
+    const bool obj_name = ends_with(o.output, ".obj") || ends_with(o.output, ".OBJ");
+    if (!ply_name && !obj_name)
+        throw UsageError("output '" + o.output + "' must end in .obj or .ply (the formats ppm-tess writes)");
+    if (o.ply && obj_name) throw UsageError("--ply asks for PLY, but the output '" + o.output + "' ends in .obj");
+    o.ply = ply_name;
     return o;
 }
 
