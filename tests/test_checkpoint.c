@@ -232,45 +232,56 @@ static void write_with_checksum(const char *path, const unsigned char *bytes, si
     fclose(file);
 }
 
-/* The saved checkpoint with one double of slot `slot`'s statistics (field 0..7) replaced. */
-static void craft_statistic(fixture *f, const char *out, size_t slot, int field, double value) {
+/* Renders `passes` passes, saves the checkpoint to f->path and returns the path of the
+ * crafted copy the test writes. */
+static const char *save_after(fixture *f, int passes, char crafted[320]) {
+    ppm_renderer r = new_renderer(f, "sppm");
+    run_passes(r, passes);
+    assert_int_equal(ppm_renderer_save_checkpoint(r, f->path), PPM_OK);
+    ppm_renderer_release(r);
+    snprintf(crafted, 320, "%s/crafted.ppmckpt", f->folder);
+    return crafted;
+}
+
+/* Writes the saved checkpoint to `out` with `count` bytes at `at` replaced (when count > 0),
+ * its first `keep` bytes only (0: all but the old checksum), and a recomputed checksum. */
+static void craft(fixture *f, const char *out, size_t at, const void *value, size_t count, size_t keep) {
+    size_t size;
+    unsigned char *bytes = read_all(f->path, &size);
+    assert_true(at + count <= size - 8);
+    memcpy(bytes + at, value, count);
+    write_with_checksum(out, bytes, keep ? keep : size - 8);
+    free(bytes);
+}
+
+/* Offset of field 0..7 of slot `slot`'s statistics in the saved checkpoint. */
+static size_t statistic_at(fixture *f, size_t slot, int field) {
     size_t size;
     unsigned char *bytes = read_all(f->path, &size);
     uint64_t slots;
     memcpy(&slots, bytes + slots_at, sizeof slots);
-    assert_true(slot < slots);
-    const size_t at = header_bytes + slots * 4 + (slot * 8 + (size_t)field) * sizeof(double);
-    memcpy(bytes + at, &value, sizeof value);
-    write_with_checksum(out, bytes, size - 8);
     free(bytes);
+    assert_true(slot < slots);
+    return header_bytes + slots * 4 + (slot * 8 + (size_t)field) * sizeof(double);
 }
 
-/* The saved header with its counts replaced and no statistics. */
-static void craft_counts(fixture *f, const char *out, uint64_t passes, uint64_t emitted) {
-    size_t size;
-    unsigned char *bytes = read_all(f->path, &size);
-    const uint64_t no_slots = 0;
-    memcpy(bytes + passes_at, &passes, sizeof passes);
-    memcpy(bytes + emitted_at, &emitted, sizeof emitted);
-    memcpy(bytes + slots_at, &no_slots, sizeof no_slots);
-    write_with_checksum(out, bytes, header_bytes);
-    free(bytes);
+static void craft_statistic(fixture *f, const char *out, size_t slot, int field, double value) {
+    craft(f, out, statistic_at(f, slot, field), &value, sizeof value, 0);
+}
+
+/* The saved header with its counts (passes, photons emitted) replaced; with `no_slots`, the
+ * slot count is 0 and the statistics are cut off. */
+static void craft_counts(fixture *f, const char *out, uint64_t passes, uint64_t emitted, int no_slots) {
+    const uint64_t counts[3] = {passes, emitted, 0};
+    craft(f, out, passes_at, counts, no_slots ? sizeof counts : 2 * sizeof(uint64_t), no_slots ? header_bytes : 0);
 }
 
 static void test_implausible_statistics_are_refused(void **state) {
     fixture *f = *state;
-    ppm_renderer r = new_renderer(f, "sppm");
-    run_passes(r, 2);
-    assert_int_equal(ppm_renderer_save_checkpoint(r, f->path), PPM_OK);
-    ppm_renderer_release(r);
-
-    char crafted[320];
-    snprintf(crafted, sizeof crafted, "%s/crafted.ppmckpt", f->folder);
+    char path[320];
+    const char *crafted = save_after(f, 2, path);
     /* The untouched statistics re-hashed load: the crafting itself is right. */
-    size_t size;
-    unsigned char *bytes = read_all(f->path, &size);
-    write_with_checksum(crafted, bytes, size - 8);
-    free(bytes);
+    craft(f, crafted, 0, "", 0, 0);
     ppm_renderer fine = new_renderer(f, "sppm");
     assert_int_equal(ppm_renderer_load_checkpoint(fine, crafted), PPM_OK);
     ppm_renderer_release(fine);
@@ -300,16 +311,12 @@ static void test_implausible_statistics_are_refused(void **state) {
 
 static void test_counts_that_disagree_are_refused(void **state) {
     fixture *f = *state;
-    ppm_renderer r = new_renderer(f, "sppm");
-    run_passes(r, 1);
-    assert_int_equal(ppm_renderer_save_checkpoint(r, f->path), PPM_OK);
-    ppm_renderer_release(r);
-    char crafted[320];
-    snprintf(crafted, sizeof crafted, "%s/crafted.ppmckpt", f->folder);
+    char path[320];
+    const char *crafted = save_after(f, 1, path);
     /* Passes recorded without statistics are refused, not dropped. */
-    craft_counts(f, crafted, 3, 15000);
+    craft_counts(f, crafted, 3, 15000, 1);
     expect_load_error(f, crafted, PPM_ERROR_PARSE, "3 passes recorded but no pixel statistics");
-    craft_counts(f, crafted, 0, 5000);
+    craft_counts(f, crafted, 0, 5000, 1);
     expect_load_error(f, crafted, PPM_ERROR_PARSE, "no pass recorded, but 5000 photons emitted");
 }
 
@@ -317,20 +324,10 @@ static void test_counts_that_disagree_are_refused(void **state) {
  * keeps the flux, so a crafted flux would become an infinite pixel. */
 static void test_flux_without_radius_is_refused(void **state) {
     fixture *f = *state;
-    ppm_renderer r = new_renderer(f, "sppm");
-    run_passes(r, 1);
-    assert_int_equal(ppm_renderer_save_checkpoint(r, f->path), PPM_OK);
-    ppm_renderer_release(r);
-    char crafted[320];
-    snprintf(crafted, sizeof crafted, "%s/crafted.ppmckpt", f->folder);
-    size_t size;
-    unsigned char *bytes = read_all(f->path, &size);
-    uint64_t slots;
-    memcpy(&slots, bytes + slots_at, sizeof slots);
+    char path[320];
+    const char *crafted = save_after(f, 1, path);
     const double values[3] = {0, 0, 1e30}; /* N, R^2, tau red */
-    memcpy(bytes + header_bytes + slots * 4 + 7 * 8 * sizeof(double), values, sizeof values);
-    write_with_checksum(crafted, bytes, size - 8);
-    free(bytes);
+    craft(f, crafted, statistic_at(f, 7, 0), values, sizeof values, 0);
     expect_load_error(f, crafted, PPM_ERROR_PARSE,
                       "pixel slot 7: flux tau = 1e+30 (must be 0 where no radius was set)");
 }
@@ -339,19 +336,9 @@ static void test_flux_without_radius_is_refused(void **state) {
  * statistics kept so that only the counts are wrong. */
 static void test_counts_beyond_int64_are_refused(void **state) {
     fixture *f = *state;
-    ppm_renderer r = new_renderer(f, "sppm");
-    run_passes(r, 1);
-    assert_int_equal(ppm_renderer_save_checkpoint(r, f->path), PPM_OK);
-    ppm_renderer_release(r);
-    char crafted[320];
-    snprintf(crafted, sizeof crafted, "%s/crafted.ppmckpt", f->folder);
-    size_t size;
-    unsigned char *bytes = read_all(f->path, &size);
-    const uint64_t most = UINT64_MAX;
-    memcpy(bytes + passes_at, &most, sizeof most);
-    memcpy(bytes + emitted_at, &most, sizeof most);
-    write_with_checksum(crafted, bytes, size - 8);
-    free(bytes);
+    char path[320];
+    const char *crafted = save_after(f, 1, path);
+    craft_counts(f, crafted, UINT64_MAX, UINT64_MAX, 0);
     expect_load_error(f, crafted, PPM_ERROR_PARSE, "18446744073709551615 photons emitted, more than 2^63 - 1");
 }
 
