@@ -61,8 +61,7 @@ inline ppm::Vec3 finite_point(const double *p, const char *name) {
     require(p, name);
     const ppm::Vec3 v = ppm::Vec3::from(p);
     if (!ppm::is_finite(v)) ppm::invalid_argument(std::string(name) + " has a NaN or infinite coordinate");
-    if (!ppm::within(v.x, ppm::kCoordinateLimit) || !ppm::within(v.y, ppm::kCoordinateLimit) ||
-        !ppm::within(v.z, ppm::kCoordinateLimit))
+    if (!ppm::within_coordinate_limit(v))
         ppm::invalid_argument(std::string(name) + " has a coordinate beyond +-" +
                               ppm::format_number(ppm::kCoordinateLimit) + " (the limit of scene coordinates)");
     return v;

@@ -3,6 +3,8 @@
 // sums, float images) can overflow into inf or NaN.
 #pragma once
 
+#include "math/vec3.h"
+
 namespace ppm {
 
 // Every coordinate, length and radius in scene units: its square (1e24) and products with
@@ -17,5 +19,10 @@ constexpr double kEmissionLimit = 1e20;
 
 // |x| <= limit, false for NaN.
 inline bool within(double x, double limit) { return x >= -limit && x <= limit; }
+
+// A point or vector of the scene: every coordinate within kCoordinateLimit.
+inline bool within_coordinate_limit(const Vec3 &v) {
+    return within(v.x, kCoordinateLimit) && within(v.y, kCoordinateLimit) && within(v.z, kCoordinateLimit);
+}
 
 } // namespace ppm

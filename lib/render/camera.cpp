@@ -12,7 +12,7 @@ namespace {
 
 void require_finite(const Vec3 &v, const char *name) {
     if (!is_finite(v)) invalid_argument(std::string("camera ") + name + " is not finite");
-    if (!within(v.x, kCoordinateLimit) || !within(v.y, kCoordinateLimit) || !within(v.z, kCoordinateLimit))
+    if (!within_coordinate_limit(v))
         invalid_argument(std::string("camera ") + name + " has a coordinate beyond +-" +
                          format_number(kCoordinateLimit) + " (the limit of scene coordinates)");
 }
