@@ -144,6 +144,21 @@ else
   finish
 fi
 
+# Relocatable: a copy of the prefix elsewhere runs its tools with no loader path set, each
+# loading the copy's libppm (RUNPATH $ORIGIN/../lib).
+moved="$work/moved-prefix"
+cp -a "$prefix" "$moved"
+for tool in ppm-render ppm-tess ppm-bench; do
+  binary="$moved/bin/$tool"
+  loaded=$(env -u LD_LIBRARY_PATH ldd "$binary" 2>/dev/null | awk '$1 == "libppm.so.0" { print $3 }')
+  if [[ "$(readlink -f "$loaded")" == "$(readlink -f "$moved/lib/libppm.so.0")" ]] &&
+    env -u LD_LIBRARY_PATH "$binary" --version >/dev/null 2>&1; then
+    pass "relocated install: $tool runs and loads the copied prefix's libppm"
+  else
+    fail "relocated install: $tool loads libppm.so.0 from '$loaded' or does not run"
+  fi
+done
+
 library="$prefix/lib/libppm.so"
 soname=$(readelf -d "$library" | sed -n 's/.*Library soname: \[\(.*\)\].*/\1/p')
 if [[ "$soname" == libppm.so.0 ]]; then
