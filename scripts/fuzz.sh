@@ -4,7 +4,7 @@ set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 cd "$PPM_ROOT"
 
-TARGETS=(scene_json bpt obj checkpoint texture)
+TARGETS=(scene_json bpt obj checkpoint texture ply serialized)
 FUZZ_DIR=${PPM_FUZZ_BUILD_DIR:-build-fuzz}
 
 usage() {
@@ -78,7 +78,7 @@ else
 fi
 
 # Per target: longest input in bytes (the seeds are well below it).
-declare -A MAX_LEN=([scene_json]=8192 [bpt]=16384 [obj]=4096 [checkpoint]=4096 [texture]=4096)
+declare -A MAX_LEN=([scene_json]=8192 [bpt]=16384 [obj]=4096 [checkpoint]=4096 [texture]=4096 [ply]=4096 [serialized]=4096)
 rss_mb=${PPM_FUZZ_RSS_MB:-2048}
 
 # ---------------------------------------------------------------------------------------------

@@ -86,6 +86,12 @@ typedef struct ppm_context_t *ppm_context;
  * into the same object. `message` is valid only during the call. */
 typedef void (*ppm_error_callback)(void *user_data, ppm_status status, const char *message);
 
+/* Called with a warning: something in an input was read but not used, or replaced by a
+ * substitute (vertex colours in a mesh file, an element of a kind libppm does not render).
+ * `message` names the file and what was skipped, and is valid only during the call. Called on
+ * the thread that reads the input; must not call back into the same object. */
+typedef void (*ppm_warning_callback)(void *user_data, const char *message);
+
 /* Creates a context with default settings (all hardware threads). The caller owns the one
  * reference returned. Thread safe.
  * Errors: INVALID_ARGUMENT (out NULL), UNSUPPORTED (Embree device creation failed). */
@@ -111,6 +117,12 @@ PPM_API ppm_status ppm_context_get_double(ppm_context context, const char *key, 
  * and never dereferenced by the library. Errors: INVALID_ARGUMENT (context NULL). Not
  * concurrently with other calls using the same context. */
 PPM_API ppm_status ppm_context_set_error_callback(ppm_context context, ppm_error_callback callback, void *user_data);
+/* Sets the warning callback; user_data is passed back as it is. NULL restores the default,
+ * which writes "libppm: warning: <message>" and a newline to stderr; to silence warnings, pass
+ * a callback that does nothing. Errors: INVALID_ARGUMENT (context NULL). Not concurrently with
+ * other calls using the same context. */
+PPM_API ppm_status ppm_context_set_warning_callback(ppm_context context, ppm_warning_callback callback,
+                                                    void *user_data);
 
 /* ---------------------------------------------------------------------------------------- */
 /* Scene: geometry, built then committed, then queried.                                      */
@@ -207,6 +219,29 @@ PPM_API ppm_status ppm_scene_add_triangle_mesh(ppm_scene scene, const double *po
  * fewer than 3 corners or with no area; a control character), INVALID_ARGUMENT (the
  * placed mesh beyond the coordinate limit). */
 PPM_API ppm_status ppm_scene_load_obj(ppm_scene scene, const char *path, uint32_t *out_geom_id);
+
+/* Reads a PLY mesh (format 1.0: ascii, binary_little_endian or binary_big_endian). Vertex
+ * x, y, z are required; nx, ny, nz become per-vertex normals and u, v (else texture_u,
+ * texture_v, else s, t) texture coordinates, kept as they are (as Mitsuba 3 reads them);
+ * faces come from the list vertex_indices (or vertex_index), polygons fanned from their first
+ * corner. Data the mesh does not use (vertex colours, other properties and elements) is
+ * skipped with one warning per kind (ppm_context_set_warning_callback). Errors: IO, PARSE
+ * naming the file and the header line, body line (ascii) or byte offset (binary): counts the
+ * file's size cannot hold, a truncated body, a value that is not a number or not finite, a
+ * coordinate beyond +-1e12, an index out of range, a face with fewer than 3 corners or no
+ * area; INVALID_ARGUMENT (the placed mesh beyond the coordinate limit). */
+PPM_API ppm_status ppm_scene_load_ply(ppm_scene scene, const char *path, uint32_t *out_geom_id);
+
+/* Reads mesh number `shape_index` (0: the first) of a Mitsuba `serialized` file (format
+ * versions 3 and 4, zlib-compressed, single or double precision), with its normals and
+ * texture coordinates. A mesh flagged for face normals is loaded without vertex normals;
+ * vertex colours are skipped with a warning; triangles repeating a vertex are left out.
+ * Errors: IO, PARSE naming the file, the mesh and its byte offset (not a serialized file, a
+ * shape_index beyond the meshes the file holds, corrupt or truncated compressed data, counts
+ * the file cannot hold, an index out of range, a coordinate not finite or beyond +-1e12),
+ * INVALID_ARGUMENT (the placed mesh beyond the coordinate limit). */
+PPM_API ppm_status ppm_scene_load_serialized(ppm_scene scene, const char *path, uint32_t shape_index,
+                                             uint32_t *out_geom_id);
 
 /* Affine transform of a geometry: 16 doubles, row-major 4x4 matrix M applied to points as
  * M * (x, y, z, 1); the last row must be (0, 0, 0, 1) and the upper 3x3 invertible. Patches

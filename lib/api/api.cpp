@@ -11,6 +11,8 @@
 #include "geometry/tessellate.h"
 #include "io/bpt_reader.h"
 #include "io/obj_reader.h"
+#include "io/ply_reader.h"
+#include "io/serialized_reader.h"
 #include "scene/mesh_geometry.h"
 #include "scene/patch_geometry.h"
 #include "scene/quad_geometry.h"
@@ -171,6 +173,13 @@ ppm_status ppm_context_set_error_callback(ppm_context context, ppm_error_callbac
     });
 }
 
+ppm_status ppm_context_set_warning_callback(ppm_context context, ppm_warning_callback callback, void *user_data) {
+    return guarded(nullptr, [&] {
+        require(context, "context");
+        context->set_warning_callback(callback, user_data);
+    });
+}
+
 /* Scene ------------------------------------------------------------------------------- */
 
 ppm_status ppm_scene_create(ppm_context context, ppm_scene *out_scene) {
@@ -316,6 +325,26 @@ ppm_status ppm_scene_load_obj(ppm_scene scene, const char *path, uint32_t *out_g
     return add_geometry(scene, out_geom_id, [&] {
         require(path, "path");
         return std::make_unique<ppm::MeshGeometry>(ppm::read_obj_file(path));
+    });
+}
+
+ppm_status ppm_scene_load_ply(ppm_scene scene, const char *path, uint32_t *out_geom_id) {
+    return add_geometry(scene, out_geom_id, [&] {
+        require(path, "path");
+        ppm::PlyMesh ply = ppm::read_ply_file(path);
+        for (const std::string &warning : ply.warnings) scene->context().warn(warning);
+        return std::make_unique<ppm::MeshGeometry>(std::move(ply.mesh));
+    });
+}
+
+ppm_status ppm_scene_load_serialized(ppm_scene scene, const char *path, uint32_t shape_index, uint32_t *out_geom_id) {
+    return add_geometry(scene, out_geom_id, [&] {
+        require(path, "path");
+        ppm::SerializedMesh serialized = ppm::read_serialized_file(path, shape_index);
+        if (serialized.had_colours)
+            scene->context().warn(std::string(path) + ": mesh " + std::to_string(shape_index) +
+                                  ": vertex colours are ignored");
+        return std::make_unique<ppm::MeshGeometry>(std::move(serialized.mesh));
     });
 }
 

@@ -2,6 +2,8 @@
 
 #include "core/error.h"
 
+#include <cstdio>
+
 namespace ppm {
 
 namespace {
@@ -50,6 +52,13 @@ void Context::check_embree(const char *what) const {
     const ppm_status status = error == RTC_ERROR_OUT_OF_MEMORY ? PPM_ERROR_OUT_OF_MEMORY : PPM_ERROR_INTERNAL;
     fail(status, std::string(what) + ": Embree " + embree_error_name(error) +
                      (last_embree_message.empty() ? "" : ": " + last_embree_message));
+}
+
+void Context::warn(const std::string &message) const {
+    if (warning_callback_)
+        warning_callback_(warning_user_data_, message.c_str());
+    else
+        std::fprintf(stderr, "libppm: warning: %s\n", message.c_str());
 }
 
 } // namespace ppm

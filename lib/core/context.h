@@ -39,12 +39,21 @@ public:
         if (error_callback_) error_callback_(error_user_data_, status, message);
     }
 
+    void set_warning_callback(ppm_warning_callback callback, void *user_data) {
+        warning_callback_ = callback;
+        warning_user_data_ = user_data;
+    }
+    // Through the callback, or to stderr when none is set.
+    void warn(const std::string &message) const;
+
 private:
     RTCDevice device_ = nullptr;
     int threads_ = 0;
     std::unique_ptr<tbb::task_arena> arena_;
     ppm_error_callback error_callback_ = nullptr;
     void *error_user_data_ = nullptr;
+    ppm_warning_callback warning_callback_ = nullptr;
+    void *warning_user_data_ = nullptr;
 };
 
 } // namespace ppm

@@ -1,0 +1,151 @@
+/* PLY and Mitsuba serialized meshes through the C API: a square written to a file loads,
+ * is hit where it lies, reports what it skips through the warning callback, and damaged or
+ * missing files are refused with their name in the message. */
+#include <ppm/ppm.h>
+
+#include "test_support.h"
+
+#include <zlib.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static char folder[4096];
+static char warnings[4096];
+
+static void collect_warning(void *user_data, const char *message) {
+    size_t *count = user_data;
+    ++*count;
+    strncat(warnings, message, sizeof warnings - strlen(warnings) - 2);
+    strcat(warnings, "\n");
+}
+
+static void write_file(const char *path, const void *data, size_t size) {
+    FILE *file = fopen(path, "wb");
+    assert_non_null(file);
+    assert_int_equal(fwrite(data, 1, size, file), size);
+    assert_int_equal(fclose(file), 0);
+}
+
+/* The square [0, 2] x [0, 2] at z = 1, as a quad, with a colour per vertex. */
+static const char square_ply[] = "ply\n"
+                                 "format ascii 1.0\n"
+                                 "element vertex 4\n"
+                                 "property float x\nproperty float y\nproperty float z\n"
+                                 "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+                                 "element face 1\n"
+                                 "property list uchar int vertex_indices\n"
+                                 "end_header\n"
+                                 "0 0 1 255 0 0\n2 0 1 0 255 0\n2 2 1 0 0 255\n0 2 1 9 9 9\n"
+                                 "4 0 1 2 3\n";
+
+/* Traces a ray down the z axis at (x, y) and returns the hit distance (INFINITY on a miss). */
+static double hit_distance(ppm_scene scene, double x, double y) {
+    ppm_ray ray = {{x, y, 5}, 0, {0, 0, -1}, INFINITY};
+    ppm_hit hit;
+    assert_int_equal(ppm_scene_intersect(scene, &ray, 1, &hit), PPM_OK);
+    return hit.geom_id == PPM_INVALID_ID ? INFINITY : hit.t;
+}
+
+static void ply_file_loads_is_hit_and_warns_of_colours(void **state) {
+    scene_fixture *f = *state;
+    size_t count = 0;
+    warnings[0] = '\0';
+    assert_int_equal(ppm_context_set_warning_callback(f->context, collect_warning, &count), PPM_OK);
+    char path[4200];
+    snprintf(path, sizeof path, "%s/square.ply", folder);
+    write_file(path, square_ply, strlen(square_ply));
+    uint32_t id = 99;
+    assert_int_equal(ppm_scene_load_ply(f->scene, path, &id), PPM_OK);
+    assert_int_equal(id, 0);
+    assert_int_equal(count, 1);
+    assert_non_null(strstr(warnings, "square.ply: vertex colours are ignored"));
+    assert_int_equal(ppm_scene_commit(f->scene), PPM_OK);
+    assert_close(hit_distance(f->scene, 0.5, 1.5), 4.0, 1e-12);
+    assert_close(hit_distance(f->scene, 1.5, 0.5), 4.0, 1e-12);
+    assert_true(isinf(hit_distance(f->scene, 2.5, 0.5)));
+}
+
+static void damaged_or_missing_ply_files_are_refused_by_name(void **state) {
+    scene_fixture *f = *state;
+    char path[4200];
+    snprintf(path, sizeof path, "%s/bad.ply", folder);
+    char text[sizeof square_ply];
+    memcpy(text, square_ply, sizeof square_ply);
+    strstr(text, "4 0 1 2 3")[8] = '7'; /* the last corner becomes vertex 7 of 4 */
+    write_file(path, text, strlen(text));
+    assert_int_equal(ppm_scene_load_ply(f->scene, path, NULL), PPM_ERROR_PARSE);
+    assert_non_null(strstr(ppm_last_error_message(), "bad.ply:"));
+    assert_non_null(strstr(ppm_last_error_message(), "vertex index 7 is out of range"));
+    assert_int_equal(ppm_scene_load_ply(f->scene, "/nonexistent/mesh.ply", NULL), PPM_ERROR_IO);
+    assert_non_null(strstr(ppm_last_error_message(), "/nonexistent/mesh.ply"));
+    assert_int_equal(ppm_scene_load_ply(f->scene, NULL, NULL), PPM_ERROR_INVALID_ARGUMENT);
+    assert_int_equal(ppm_scene_load_ply(NULL, path, NULL), PPM_ERROR_INVALID_ARGUMENT);
+    assert_int_equal(ppm_scene_load_serialized(f->scene, NULL, 0, NULL), PPM_ERROR_INVALID_ARGUMENT);
+    assert_int_equal(ppm_context_set_warning_callback(NULL, collect_warning, NULL), PPM_ERROR_INVALID_ARGUMENT);
+}
+
+static void put(unsigned char **at, const void *value, size_t size) {
+    memcpy(*at, value, size);
+    *at += size;
+}
+
+/* The same square as a version 4 serialized file with one mesh, single precision. */
+static size_t serialized_square(unsigned char *out, size_t capacity) {
+    unsigned char body[512], *at = body;
+    const uint32_t flags = 0x1000;
+    const uint64_t vertices = 4, triangles = 2;
+    put(&at, &flags, 4);
+    put(&at, "square", 7);
+    put(&at, &vertices, 8);
+    put(&at, &triangles, 8);
+    const float positions[12] = {0, 0, 1, 2, 0, 1, 2, 2, 1, 0, 2, 1};
+    const uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
+    put(&at, positions, sizeof positions);
+    put(&at, indices, sizeof indices);
+    const uint16_t header[2] = {0x041C, 4};
+    memcpy(out, header, 4);
+    uLongf size = capacity - 4 - 12;
+    assert_int_equal(compress(out + 4, &size, body, (uLong)(at - body)), Z_OK);
+    unsigned char *end = out + 4 + size;
+    const uint64_t offset = 0;
+    const uint32_t count = 1;
+    put(&end, &offset, 8);
+    put(&end, &count, 4);
+    return (size_t)(end - out);
+}
+
+static void serialized_file_loads_and_a_wrong_index_is_refused(void **state) {
+    scene_fixture *f = *state;
+    unsigned char bytes[1024];
+    const size_t size = serialized_square(bytes, sizeof bytes);
+    char path[4200];
+    snprintf(path, sizeof path, "%s/square.serialized", folder);
+    write_file(path, bytes, size);
+    assert_int_equal(ppm_scene_load_serialized(f->scene, path, 1, NULL), PPM_ERROR_PARSE);
+    assert_non_null(strstr(ppm_last_error_message(), "square.serialized"));
+    assert_non_null(strstr(ppm_last_error_message(), "shape_index 1 is out of range"));
+    assert_int_equal(ppm_scene_load_serialized(f->scene, path, 0, NULL), PPM_OK);
+    assert_int_equal(ppm_scene_commit(f->scene), PPM_OK);
+    assert_close(hit_distance(f->scene, 1.5, 0.5), 4.0, 1e-12);
+}
+
+static int setup(void **state) {
+    if (test_make_folder(folder, sizeof folder, "ppm-mesh-files-") != 0) return -1;
+    return scene_fixture_setup(state);
+}
+
+static int teardown(void **state) {
+    test_remove_folder(folder);
+    return scene_fixture_teardown(state);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup_teardown(ply_file_loads_is_hit_and_warns_of_colours, setup, teardown),
+        cmocka_unit_test_setup_teardown(damaged_or_missing_ply_files_are_refused_by_name, setup, teardown),
+        cmocka_unit_test_setup_teardown(serialized_file_loads_and_a_wrong_index_is_refused, setup, teardown),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
