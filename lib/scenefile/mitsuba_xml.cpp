@@ -1,0 +1,668 @@
+#include "scenefile/mitsuba_xml.h"
+
+#include "core/error.h"
+#include "io/text_file.h"
+
+#include <pugixml.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <set>
+
+namespace ppm {
+
+// ---- SourceFiles ----------------------------------------------------------------------------
+
+std::size_t SourceFiles::add(const std::string &path, std::string text) {
+    File file;
+    file.path = path;
+    file.base = next_base_;
+    file.line_starts.push_back(0);
+    for (std::size_t i = 0; i < text.size(); ++i)
+        if (text[i] == '\n') file.line_starts.push_back(i + 1);
+    next_base_ += text.size() + 1;
+    file.text = std::move(text);
+    files_.push_back(std::move(file));
+    return files_.back().base;
+}
+
+std::string SourceFiles::location(std::size_t position) const {
+    for (const File &file : files_) {
+        if (position < file.base || position > file.base + file.text.size()) continue;
+        const std::size_t offset = position - file.base;
+        const auto line = std::upper_bound(file.line_starts.begin(), file.line_starts.end(), offset) - 1;
+        return file.path + ":" + std::to_string(line - file.line_starts.begin() + 1) + ":" +
+               std::to_string(offset - *line + 1);
+    }
+    return files_.empty() ? std::string("<no file>") : files_.front().path;
+}
+
+bool looks_like_xml(const std::string &text) {
+    std::size_t i = 0;
+    if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) i = 3; // UTF-8 byte order mark
+    while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+    return i < text.size() && text[i] == '<';
+}
+
+namespace {
+
+constexpr int kMaxIncludeDepth = 32;
+
+// Mitsuba's table of named indices of refraction (src/render/ior.h), for dielectrics and plastics.
+const std::map<std::string, double> &named_iors() {
+    static const std::map<std::string, double> table = {
+        {"vacuum", 1.0},      {"helium", 1.00004},         {"hydrogen", 1.00013},
+        {"air", 1.000277},    {"carbon dioxide", 1.00045}, {"water", 1.3330},
+        {"acetone", 1.36},    {"ethanol", 1.361},          {"carbon tetrachloride", 1.461},
+        {"glycerol", 1.4729}, {"benzene", 1.501},          {"silicone oil", 1.52045},
+        {"bromine", 1.661},   {"water ice", 1.31},         {"fused quartz", 1.458},
+        {"pyrex", 1.470},     {"acrylic glass", 1.49},     {"polypropylene", 1.49},
+        {"bk7", 1.5046},      {"sodium chloride", 1.544},  {"amber", 1.55},
+        {"pet", 1.5750},      {"diamond", 2.419}};
+    return table;
+}
+
+// Object tags: each becomes a member of its parent (or of the scene) under this role.
+const std::set<std::string> &object_tags() {
+    static const std::set<std::string> tags = {"bsdf",    "emitter", "shape",  "texture", "sensor",     "film",
+                                               "sampler", "rfilter", "medium", "phase",   "integrator", "volume"};
+    return tags;
+}
+
+// The types the builder renders (scene_builder.cpp); lenient mode substitutes the others.
+const std::set<std::string> &renderable(const std::string &tag) {
+    static const std::map<std::string, std::set<std::string>> types = {
+        {"bsdf", {"diffuse", "conductor", "dielectric", "plastic", "twosided"}},
+        {"emitter", {"point", "spot", "area"}},
+        {"shape", {"sphere", "rectangle", "obj", "ply", "serialized", "bezier"}},
+        {"texture", {"bitmap"}}};
+    static const std::set<std::string> none;
+    const auto found = types.find(tag);
+    return found == types.end() ? none : found->second;
+}
+
+class XmlReader {
+public:
+    XmlReader(const XmlOptions &options, XmlScene &out) : options_(options), out_(out) {
+        for (const auto &define : options.defines) parameters_[define.first] = define.second;
+    }
+
+    void read(const std::string &path) {
+        out_.root = Json::Value(Json::objectValue);
+        out_.root["shapes"] = Json::Value(Json::arrayValue);
+        read_file(path, nullptr);
+        // Objects at the top with an id are converted where they are referred to; the BSDFs
+        // also become the scene's named materials.
+        for (const Pending &pending : top_level_) convert_top_level(pending);
+        if (out_.root["shapes"].empty()) out_.root.removeMember("shapes");
+    }
+
+private:
+    struct Source {
+        std::unique_ptr<pugi::xml_document> document;
+        std::size_t base;
+        std::string folder; // of the file, for relative file names
+    };
+    struct Pending {
+        pugi::xml_node node;
+        const Source *source;
+    };
+
+    // ---- locations ----------------------------------------------------------------------
+
+    // Where the element starts: pugixml gives the offset of its name, just after the '<'.
+    std::size_t position(const pugi::xml_node &node, const Source &source) const {
+        const std::ptrdiff_t offset = node.offset_debug();
+        return offset <= 0 ? source.base : source.base + static_cast<std::size_t>(offset) - 1;
+    }
+    std::string where(const pugi::xml_node &node, const Source &source) const {
+        return out_.sources.location(position(node, source)) + ": <" + node.name() + ">";
+    }
+    [[noreturn]] void error(const pugi::xml_node &node, const Source &source, const std::string &what) const {
+        fail(PPM_ERROR_PARSE, where(node, source) + ": " + what);
+    }
+    void warn(const pugi::xml_node &node, const Source &source, const std::string &what) {
+        out_.warnings.push_back(where(node, source) + ": " + what);
+    }
+    // The same at the element a converted object came from.
+    std::string where(const Json::Value &value, const char *tag) const {
+        return out_.sources.location(static_cast<std::size_t>(value.getOffsetStart())) + ": <" + tag + ">";
+    }
+    void warn(const Json::Value &value, const char *tag, const std::string &what) {
+        out_.warnings.push_back(where(value, tag) + ": " + what);
+    }
+    [[noreturn]] void error(const Json::Value &value, const char *tag, const std::string &what) const {
+        fail(PPM_ERROR_PARSE, where(value, tag) + ": " + what);
+    }
+    Json::Value located(Json::Value value, const pugi::xml_node &node, const Source &source) const {
+        const std::size_t at = position(node, source);
+        value.setOffsetStart(static_cast<std::ptrdiff_t>(at));
+        value.setOffsetLimit(static_cast<std::ptrdiff_t>(at + 1));
+        return value;
+    }
+
+    // ---- files and includes -------------------------------------------------------------
+
+    void read_file(const std::string &path, const std::pair<pugi::xml_node, const Source *> *included_from) {
+        if (std::find(include_stack_.begin(), include_stack_.end(), path) != include_stack_.end()) {
+            std::string cycle;
+            for (const std::string &file : include_stack_) cycle += file + " -> ";
+            error(included_from->first, *included_from->second, "cyclic include: " + cycle + path);
+        }
+        if (include_stack_.size() >= kMaxIncludeDepth)
+            error(included_from->first, *included_from->second,
+                  "includes nested deeper than " + std::to_string(kMaxIncludeDepth) + " files");
+        std::string text;
+        try {
+            text = read_text_file(path);
+        } catch (const Error &e) {
+            if (!included_from) throw;
+            fail(e.status(), where(included_from->first, *included_from->second) + ": " + e.what());
+        }
+        auto source = std::make_unique<Source>();
+        source->document = std::make_unique<pugi::xml_document>();
+        source->base = out_.sources.add(path, text);
+        const std::size_t slash = path.rfind('/');
+        source->folder = slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
+        const pugi::xml_parse_result parsed =
+            source->document->load_buffer(text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
+        if (!parsed)
+            fail(PPM_ERROR_PARSE, out_.sources.location(source->base + static_cast<std::size_t>(parsed.offset)) +
+                                      ": malformed XML: " + parsed.description());
+        const pugi::xml_node scene = source->document->document_element();
+        sources_.push_back(std::move(source));
+        const Source &current = *sources_.back();
+        if (std::string(scene.name()) != "scene")
+            error(scene, current, "the root element must be <scene>, not <" + std::string(scene.name()) + ">");
+        check_version(scene, current);
+        include_stack_.push_back(path);
+        for (const pugi::xml_node &child : scene.children()) {
+            if (child.type() != pugi::node_element) continue;
+            read_top_level(child, current);
+        }
+        include_stack_.pop_back();
+    }
+
+    void check_version(const pugi::xml_node &scene, const Source &source) const {
+        const std::string version = scene.attribute("version").value();
+        if (version.empty()) error(scene, source, "the 'version' attribute is missing (e.g. version=\"3.0.0\")");
+        const int major = std::atoi(version.c_str());
+        if (major < 0 || major > 3 || !std::isdigit(static_cast<unsigned char>(version[0])))
+            error(scene, source, "version \"" + version + "\" is not supported (0.x to 3.x files are read)");
+    }
+
+    void read_top_level(const pugi::xml_node &node, const Source &source) {
+        const std::string tag = node.name();
+        if (tag == "default") {
+            check_attributes(node, source, {"name", "value"});
+            const std::string name = required(node, source, "name");
+            // A value given by the caller (-D) wins over the file's default.
+            if (!parameters_.count(name)) parameters_[name] = substitute(node, source, "value");
+        } else if (tag == "include") {
+            check_attributes(node, source, {"filename"});
+            const std::pair<pugi::xml_node, const Source *> from(node, &source);
+            read_file(resolve(source, substitute(node, source, "filename")), &from);
+        } else if (tag == "path") {
+            warn(node, source, "ignored: file names are resolved relative to the scene file");
+        } else if (object_tags().count(tag)) {
+            const std::string id = node.attribute("id").value();
+            if (!id.empty()) {
+                if (by_id_.count(id)) error(node, source, "id \"" + id + "\" is defined twice");
+                by_id_[id] = Pending{node, &source};
+            }
+            top_level_.push_back(Pending{node, &source});
+        } else {
+            error(node, source, "unknown element (expected an object such as <shape>, or <default>, <include>)");
+        }
+    }
+
+    std::string resolve(const Source &source, const std::string &name) const {
+        return name.empty() || name[0] == '/' ? name : source.folder + name;
+    }
+
+    // ---- attributes and parameters ------------------------------------------------------
+
+    void check_attributes(const pugi::xml_node &node, const Source &source,
+                          std::initializer_list<const char *> allowed) const {
+        for (const pugi::xml_attribute &attribute : node.attributes()) {
+            bool known = false;
+            for (const char *name : allowed) known = known || std::string(attribute.name()) == name;
+            if (!known) {
+                std::string list;
+                for (const char *name : allowed) list += std::string(list.empty() ? "" : ", ") + name;
+                error(node, source,
+                      "unknown attribute '" + std::string(attribute.name()) + "' (allowed: " + list + ")");
+            }
+        }
+    }
+
+    std::string required(const pugi::xml_node &node, const Source &source, const char *attribute) const {
+        const pugi::xml_attribute found = node.attribute(attribute);
+        if (!found) error(node, source, std::string("the attribute '") + attribute + "' is missing");
+        return found.value();
+    }
+
+    // An attribute's value with $name parameters replaced.
+    std::string substitute(const pugi::xml_node &node, const Source &source, const char *attribute) const {
+        const std::string raw = required(node, source, attribute);
+        std::string result;
+        for (std::size_t i = 0; i < raw.size(); ++i) {
+            if (raw[i] != '$') {
+                result += raw[i];
+                continue;
+            }
+            std::size_t end = i + 1;
+            while (end < raw.size() && (std::isalnum(static_cast<unsigned char>(raw[end])) || raw[end] == '_')) ++end;
+            const std::string name = raw.substr(i + 1, end - i - 1);
+            if (name.empty()) error(node, source, "a '$' in '" + raw + "' is not followed by a parameter name");
+            const auto found = parameters_.find(name);
+            if (found == parameters_.end())
+                error(node, source,
+                      "the parameter $" + name + " has no value: give it a <default> or define it (ppm-render -D " +
+                          name + "=...)");
+            result += found->second;
+            i = end - 1;
+        }
+        return result;
+    }
+
+    double parse_number(const std::string &text, const pugi::xml_node &node, const Source &source) const {
+        char *end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value))
+            error(node, source, "'" + text + "' is not a finite number");
+        return value;
+    }
+
+    // "1, 2, 3" or "1 2 3": numbers separated by commas and/or white space.
+    std::vector<double> parse_numbers(const std::string &text, const pugi::xml_node &node, const Source &source) const {
+        std::vector<double> values;
+        std::string word;
+        for (std::size_t i = 0; i <= text.size(); ++i) {
+            const char c = i < text.size() ? text[i] : ' ';
+            if (c == ',' || std::isspace(static_cast<unsigned char>(c))) {
+                if (!word.empty()) values.push_back(parse_number(word, node, source));
+                word.clear();
+            } else {
+                word += c;
+            }
+        }
+        return values;
+    }
+
+    // <point>/<vector>: value="x, y, z" or x= y= z= (missing components 0).
+    Json::Value vector3(const pugi::xml_node &node, const Source &source) const {
+        Json::Value out(Json::arrayValue);
+        if (node.attribute("value")) {
+            const std::vector<double> v = parse_numbers(substitute(node, source, "value"), node, source);
+            if (v.size() != 3 && v.size() != 1) error(node, source, "expected 3 numbers (or 1 for all three)");
+            for (int i = 0; i < 3; ++i) out.append(v.size() == 1 ? v[0] : v[i]);
+        } else {
+            for (const char *axis : {"x", "y", "z"})
+                out.append(node.attribute(axis) ? parse_number(substitute(node, source, axis), node, source) : 0.0);
+        }
+        return located(out, node, source);
+    }
+
+    Json::Value colour(const pugi::xml_node &node, const Source &source) const {
+        const std::string tag = node.name();
+        const std::string text = substitute(node, source, "value");
+        if (tag == "spectrum" && text.find(':') != std::string::npos)
+            error(node, source,
+                  "spectra given as wavelength:value pairs are not supported yet; give an <rgb> or a single value");
+        const std::vector<double> v = parse_numbers(text, node, source);
+        if (v.size() != 3 && v.size() != 1) error(node, source, "expected 3 numbers (r, g, b) or 1 (grey)");
+        Json::Value out(Json::arrayValue);
+        for (int i = 0; i < 3; ++i) out.append(v.size() == 1 ? v[0] : v[i]);
+        return located(out, node, source);
+    }
+
+    // ---- transforms ---------------------------------------------------------------------
+
+    Json::Value transform(const pugi::xml_node &node, const Source &source) const {
+        Json::Value ops(Json::arrayValue);
+        for (const pugi::xml_node &op : node.children()) {
+            if (op.type() != pugi::node_element) continue;
+            const std::string tag = op.name();
+            Json::Value entry(Json::objectValue);
+            if (tag == "translate") {
+                check_attributes(op, source, {"x", "y", "z", "value"});
+                entry["translate"] = vector3(op, source);
+            } else if (tag == "scale") {
+                check_attributes(op, source, {"x", "y", "z", "value"});
+                if (op.attribute("value") && !op.attribute("x") && !op.attribute("y") && !op.attribute("z")) {
+                    const std::vector<double> v = parse_numbers(substitute(op, source, "value"), op, source);
+                    if (v.size() == 1)
+                        entry["scale"] = located(Json::Value(v[0]), op, source);
+                    else
+                        entry["scale"] = vector3(op, source);
+                } else {
+                    // Mitsuba's per-axis scale: a missing axis keeps its size.
+                    Json::Value s(Json::arrayValue);
+                    for (const char *axis : {"x", "y", "z"})
+                        s.append(op.attribute(axis) ? parse_number(substitute(op, source, axis), op, source) : 1.0);
+                    entry["scale"] = located(s, op, source);
+                }
+            } else if (tag == "rotate") {
+                check_attributes(op, source, {"x", "y", "z", "value", "angle"});
+                Json::Value rotate(Json::objectValue);
+                rotate["axis"] = vector3(op, source);
+                rotate["angle"] =
+                    located(Json::Value(parse_number(substitute(op, source, "angle"), op, source)), op, source);
+                entry["rotate"] = located(rotate, op, source);
+            } else if (tag == "matrix") {
+                check_attributes(op, source, {"value"});
+                const std::vector<double> v = parse_numbers(substitute(op, source, "value"), op, source);
+                if (v.size() != 16 && v.size() != 9)
+                    error(op, source, "expected 16 numbers (a 4x4 matrix, row by row) or 9 (3x3)");
+                Json::Value m(Json::arrayValue);
+                if (v.size() == 16) {
+                    for (double x : v) m.append(x);
+                } else {
+                    for (int r = 0; r < 4; ++r)
+                        for (int c = 0; c < 4; ++c) m.append(r < 3 && c < 3 ? v[3 * r + c] : (r == c ? 1.0 : 0.0));
+                }
+                entry["matrix"] = located(m, op, source);
+            } else if (tag == "lookat" || tag == "look_at") {
+                check_attributes(op, source, {"origin", "target", "up"});
+                Json::Value look(Json::objectValue);
+                for (const char *key : {"origin", "target", "up"}) {
+                    if (!op.attribute(key)) {
+                        if (std::string(key) == "up") continue;
+                        error(op, source, std::string("the attribute '") + key + "' is missing");
+                    }
+                    const std::vector<double> v = parse_numbers(substitute(op, source, key), op, source);
+                    if (v.size() != 3) error(op, source, std::string("'") + key + "' needs 3 numbers");
+                    Json::Value p(Json::arrayValue);
+                    for (double x : v) p.append(x);
+                    look[key] = located(p, op, source);
+                }
+                entry["look_at"] = located(look, op, source);
+            } else {
+                error(op, source, "unknown transform operation (translate, rotate, scale, matrix, lookat)");
+            }
+            ops.append(located(entry, op, source));
+        }
+        return located(ops, node, source);
+    }
+
+    // ---- objects ------------------------------------------------------------------------
+
+    // An object element as {"type": ..., parameters under their Mitsuba names, nested objects
+    // under their role}. BSDF references become the referenced id (a named material); other
+    // references are replaced by the referenced object.
+    Json::Value object(const pugi::xml_node &node, const Source &source, int depth = 0) {
+        if (depth > 32) error(node, source, "objects nested deeper than 32 levels (a cycle of references?)");
+        const std::string tag = node.name();
+        check_attributes(node, source, {"type", "id", "name"});
+        Json::Value out(Json::objectValue);
+        out["type"] = located(Json::Value(substitute(node, source, "type")), node, source);
+        for (const pugi::xml_node &child : node.children()) {
+            if (child.type() != pugi::node_element) continue;
+            const std::string kind = child.name();
+            if (kind == "float" || kind == "integer" || kind == "boolean" || kind == "string" || kind == "rgb" ||
+                kind == "spectrum" || kind == "point" || kind == "vector") {
+                check_attributes(child, source, {"name", "value", "x", "y", "z"});
+                const std::string name = required(child, source, "name");
+                if (out.isMember(name)) error(child, source, "the parameter '" + name + "' is given twice");
+                out[name] = property(child, source);
+            } else if (kind == "transform") {
+                check_attributes(child, source, {"name"});
+                out[required(child, source, "name")] = transform(child, source);
+            } else if (kind == "ref") {
+                check_attributes(child, source, {"id", "name"});
+                const std::string id = substitute(child, source, "id");
+                const auto found = by_id_.find(id);
+                if (found == by_id_.end()) error(child, source, "no object has the id \"" + id + "\"");
+                const std::string role = child.attribute("name") ? std::string(child.attribute("name").value())
+                                                                 : std::string(found->second.node.name());
+                if (std::string(found->second.node.name()) == "bsdf" && role == "bsdf")
+                    out["bsdf"] = located(Json::Value(id), child, source);
+                else
+                    out[role] = object(found->second.node, *found->second.source, depth + 1);
+            } else if (object_tags().count(kind)) {
+                const std::string role =
+                    kind == "texture" || child.attribute("name") ? required(child, source, "name") : kind;
+                if (out.isMember(role)) error(child, source, "a second '" + role + "' in the same object");
+                out[role] = object(child, source, depth + 1);
+            } else {
+                error(child, source, "unknown element inside <" + tag + ">");
+            }
+        }
+        return located(out, node, source);
+    }
+
+    Json::Value property(const pugi::xml_node &node, const Source &source) const {
+        const std::string kind = node.name();
+        if (kind == "point" || kind == "vector") return vector3(node, source);
+        if (kind == "rgb" || kind == "spectrum") return colour(node, source);
+        const std::string text = substitute(node, source, "value");
+        if (kind == "string") return located(Json::Value(text), node, source);
+        if (kind == "boolean") {
+            if (text != "true" && text != "false") error(node, source, "'" + text + "' is not true or false");
+            return located(Json::Value(text == "true"), node, source);
+        }
+        const double value = parse_number(text, node, source);
+        if (kind == "integer") {
+            if (value != std::floor(value) || std::fabs(value) > 9.007199254740992e15)
+                error(node, source, "'" + text + "' is not an integer");
+            return located(Json::Value(static_cast<Json::Int64>(value)), node, source);
+        }
+        return located(Json::Value(value), node, source);
+    }
+
+    // ---- the scene's parts --------------------------------------------------------------
+
+    void convert_top_level(const Pending &pending) {
+        const pugi::xml_node &node = pending.node;
+        const Source &source = *pending.source;
+        const std::string tag = node.name();
+        const std::string id = node.attribute("id").value();
+        Json::Value &root = out_.root;
+        if (tag == "bsdf") {
+            if (id.empty()) {
+                warn(node, source, "a BSDF without id at the top is never used");
+                return;
+            }
+            root["bsdfs"][id] = bsdf(object(node, source));
+        } else if (tag == "texture") {
+            if (id.empty()) warn(node, source, "a texture without id at the top is never used");
+            // Textures with an id are inlined where they are referred to.
+        } else if (tag == "shape") {
+            Json::Value shape = this->shape(object(node, source));
+            if (!shape.isNull()) root["shapes"].append(shape);
+        } else if (tag == "emitter") {
+            Json::Value emitter = this->emitter(object(node, source));
+            if (!emitter.isNull()) root["emitters"].append(emitter);
+        } else if (tag == "sensor") {
+            if (root.isMember("sensor")) error(node, source, "a second <sensor>: libppm renders one camera");
+            sensor(object(node, source), node, source);
+        } else if (tag == "integrator") {
+            if (root.isMember("integrator") && root["integrator"].isMember("type"))
+                error(node, source, "a second <integrator>");
+            integrator(object(node, source), node, source);
+        } else {
+            skip(node, source, "<" + tag + "> is not rendered by libppm");
+        }
+    }
+
+    void skip(const pugi::xml_node &node, const Source &source, const std::string &what) {
+        if (!options_.lenient) error(node, source, what + " (with --lenient it is skipped with a warning)");
+        warn(node, source, what + ": skipped");
+    }
+
+    // Unwraps twosided (libppm's opaque materials are two-sided) and resolves named indices of
+    // refraction; lenient mode replaces what the builder cannot render by diffuse grey 0.5.
+    Json::Value bsdf(Json::Value value) {
+        if (value.isString()) return value; // a named material
+        const std::string type = value["type"].asString();
+        if (type == "twosided") {
+            for (const char *role : {"bsdf", "brdf_0"})
+                if (value.isMember(role)) return bsdf(value[role]);
+            error(value, "bsdf", "a twosided BSDF needs a nested <bsdf>");
+        }
+        if (!renderable("bsdf").count(type)) {
+            if (!options_.lenient) return value; // the builder names the type and what it renders
+            warn(value, "bsdf", "BSDF type '" + type + "' is not rendered by libppm: diffuse grey 0.5 instead");
+            Json::Value grey(Json::objectValue);
+            grey["type"] = "diffuse";
+            grey.setOffsetStart(value.getOffsetStart());
+            grey.setOffsetLimit(value.getOffsetLimit());
+            return grey;
+        }
+        for (const char *key : {"int_ior", "ext_ior"}) {
+            if (!value.isMember(key) || !value[key].isString()) continue;
+            const auto found = named_iors().find(value[key].asString());
+            if (found == named_iors().end())
+                error(value[key], "bsdf",
+                      std::string(key) + " \"" + value[key].asString() + "\" is not a known material");
+            const Json::Value where = value[key];
+            value[key] = Json::Value(found->second);
+            value[key].setOffsetStart(where.getOffsetStart());
+            value[key].setOffsetLimit(where.getOffsetLimit());
+        }
+        return value;
+    }
+
+    Json::Value emitter(Json::Value value) {
+        const std::string type = value["type"].asString();
+        if (!renderable("emitter").count(type) && options_.lenient) {
+            warn(value, "emitter", "emitter type '" + type + "' is not rendered by libppm: skipped");
+            return Json::Value();
+        }
+        return value;
+    }
+
+    Json::Value shape(Json::Value value) {
+        const std::string type = value["type"].asString();
+        if (!renderable("shape").count(type) && options_.lenient) {
+            warn(value, "shape", "shape type '" + type + "' is not rendered by libppm: skipped");
+            return Json::Value();
+        }
+        if (value.isMember("bsdf")) value["bsdf"] = bsdf(value["bsdf"]);
+        if (value.isMember("emitter")) {
+            Json::Value emitter = this->emitter(value["emitter"]);
+            if (emitter.isNull())
+                value.removeMember("emitter");
+            else
+                value["emitter"] = emitter;
+        }
+        return value;
+    }
+
+    // The film's size and the field of view along libppm's x axis.
+    void sensor(Json::Value value, const pugi::xml_node &node, const Source &source) {
+        Json::Value out(Json::objectValue);
+        out["type"] = value["type"];
+        double width = 768, height = 576;
+        if (value.isMember("film")) {
+            Json::Value film = value["film"];
+            Json::Value size(Json::objectValue);
+            for (const char *key : {"width", "height"})
+                if (film.isMember(key)) size[key] = film[key];
+            if (size.isMember("width")) width = size["width"].asDouble();
+            if (size.isMember("height")) height = size["height"].asDouble();
+            if (film.isMember("rfilter") && film["rfilter"]["type"].asString() != "box")
+                warn(node, source,
+                     "pixel filter '" + film["rfilter"]["type"].asString() + "' read as a box filter (libppm's)");
+            if (!size.empty()) out["film"] = located(size, node, source);
+        }
+        if (value.isMember("sampler")) {
+            // One pass per sample: both are the unit of progress, and a pass is as cheap as a
+            // few samples per pixel of a path tracer. An integrator's own count wins.
+            const Json::Value &sampler = value["sampler"];
+            Json::Value &integrator = integrator_settings();
+            if (sampler.isMember("sample_count") && !integrator.isMember("passes"))
+                integrator["passes"] = sampler["sample_count"];
+            if (sampler.isMember("seed")) integrator["seed"] = sampler["seed"];
+        }
+        if (value.isMember("fov")) {
+            const std::string axis = value.isMember("fov_axis") ? value["fov_axis"].asString() : "x";
+            const double fov = value["fov"].asDouble();
+            const double tan_half = std::tan(fov * M_PI / 360.0);
+            double x_over_axis = 1; // tan(half fov along x) / tan(half fov along the axis)
+            if (axis == "y")
+                x_over_axis = width / height;
+            else if (axis == "diagonal")
+                x_over_axis = width / std::hypot(width, height);
+            else if (axis == "smaller")
+                x_over_axis = width <= height ? 1 : width / height;
+            else if (axis == "larger")
+                x_over_axis = width >= height ? 1 : width / height;
+            else if (axis != "x")
+                error(node, source, "fov_axis \"" + axis + "\" is not x, y, diagonal, smaller or larger");
+            Json::Value fov_x(2 * std::atan(tan_half * x_over_axis) * 180.0 / M_PI);
+            fov_x.setOffsetStart(value["fov"].getOffsetStart());
+            fov_x.setOffsetLimit(value["fov"].getOffsetLimit());
+            out["fov"] = fov_x;
+        }
+        for (const char *key : {"to_world", "near_clip", "aperture_radius", "focus_distance"})
+            if (value.isMember(key)) out[key] = value[key];
+        for (const char *ignored : {"far_clip", "shutter_open", "shutter_close", "srf"})
+            if (value.isMember(ignored)) warn(node, source, std::string("'") + ignored + "' is ignored");
+        for (const std::string &key : value.getMemberNames())
+            if (key != "type" && key != "film" && key != "sampler" && key != "fov" && key != "fov_axis" &&
+                !out.isMember(key) && key != "far_clip" && key != "shutter_open" && key != "shutter_close" &&
+                key != "srf")
+                out[key] = value[key]; // the builder names what it does not know
+        out_.root["sensor"] = located(out, node, source);
+    }
+
+    Json::Value &integrator_settings() {
+        Json::Value &settings = out_.root["integrator"];
+        if (settings.isNull()) settings = Json::Value(Json::objectValue);
+        return settings;
+    }
+
+    void integrator(Json::Value value, const pugi::xml_node &node, const Source &source) {
+        Json::Value &out = integrator_settings();
+        const std::string type = value["type"].asString();
+        if (type == "sppm" || type == "ppm") {
+            out["type"] = value["type"];
+        } else {
+            warn(node, source, "integrator '" + type + "' read as \"render this scene\": libppm renders it with SPPM");
+        }
+        // Mitsuba's max_depth counts the emitted vertex too; -1 is unlimited.
+        if (value.isMember("max_depth")) {
+            const Json::Int64 depth = value["max_depth"].asInt64();
+            Json::Value converted(depth < 0 ? Json::Int64(1000) : std::max<Json::Int64>(1, depth - 1));
+            converted.setOffsetStart(value["max_depth"].getOffsetStart());
+            out["max_depth"] = converted;
+        }
+        static const std::map<std::string, std::string> renamed = {{"photon_count", "photons_per_pass"},
+                                                                   {"initial_radius", "initial_radius"},
+                                                                   {"alpha", "alpha"},
+                                                                   {"max_passes", "passes"},
+                                                                   {"seed", "seed"}};
+        for (const std::string &key : value.getMemberNames()) {
+            if (key == "type" || key == "max_depth") continue;
+            const auto found = renamed.find(key);
+            if (found != renamed.end() && (type == "sppm" || type == "ppm"))
+                out[found->second] = value[key];
+            else
+                warn(node, source, "integrator parameter '" + key + "' is ignored");
+        }
+        out = located(out, node, source);
+    }
+
+    const XmlOptions &options_;
+    XmlScene &out_;
+    std::map<std::string, std::string> parameters_;
+    std::vector<std::unique_ptr<Source>> sources_;
+    std::vector<std::string> include_stack_;
+    std::map<std::string, Pending> by_id_;
+    std::vector<Pending> top_level_;
+};
+
+} // namespace
+
+XmlScene read_mitsuba_xml(const std::string &path, const XmlOptions &options) {
+    XmlScene scene;
+    XmlReader(options, scene).read(path);
+    return scene;
+}
+
+} // namespace ppm

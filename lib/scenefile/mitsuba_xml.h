@@ -1,0 +1,71 @@
+// Mitsuba 3 XML scene files (also Mitsuba 2 and 0.6 files, which share the syntax) read into
+// libppm's own scene structure (docs/scene-format.md), so that one builder, with its checks and
+// messages, serves both formats.
+//
+// What the reader does with the XML itself: <default> parameters and their $name substitution
+// in every attribute (values given by the caller win, as Mitsuba's -D does); <include> of other
+// XML files (relative to the including file; a cycle is an error); `id` on any object and
+// <ref> to it (a BSDF or texture defined once at the top and used by several shapes);
+// <transform> operations in document order; the property elements <float>, <integer>,
+// <boolean>, <string>, <rgb>, <spectrum> (a single value: grey), <point>, <vector>.
+//
+// What it maps (the table in docs/scene-format.md lists every plugin and parameter): sensors
+// (fov along the axis `fov_axis` names, converted to libppm's x axis), films, samplers
+// (sample_count becomes the number of passes), integrators (any type is read as "render this
+// scene" with a warning unless it is sppm or ppm; max_depth converted), BSDFs, emitters and
+// shapes, whose types and parameters pass through under their Mitsuba names: the builder
+// accepts what libppm renders and names the element of anything else.
+//
+// Every value carries the position of the XML element it came from, so that an error, also
+// one found later by the builder, reads "scene.xml:12:5: shapes[2].bsdf.alpha: ...".
+#pragma once
+
+#include <json/value.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace ppm {
+
+// The files a scene was read from. A position is one number across all of them: file k's
+// bytes are numbered from base[k] on.
+class SourceFiles {
+public:
+    // Adds a file and returns its base.
+    std::size_t add(const std::string &path, std::string text);
+    const std::string &text(std::size_t file) const { return files_[file].text; }
+    std::size_t count() const { return files_.size(); }
+    // "path:line:column" of a position ("path" alone for one outside every file).
+    std::string location(std::size_t position) const;
+
+private:
+    struct File {
+        std::string path;
+        std::string text;
+        std::size_t base = 0;
+        std::vector<std::size_t> line_starts;
+    };
+    std::vector<File> files_;
+    std::size_t next_base_ = 1; // 0 means "no position" to jsoncpp's users
+};
+
+struct XmlOptions {
+    std::map<std::string, std::string> defines; // parameters, overriding the file's <default>s
+    bool lenient = false; // substitute what libppm cannot render (with a warning) instead of failing
+};
+
+struct XmlScene {
+    Json::Value root; // the scene in libppm's structure; offsets are SourceFiles positions
+    SourceFiles sources;
+    std::vector<std::string> warnings; // "file:line:column: what", one per element
+};
+
+// Whether `text` looks like an XML document (its first non-blank character is '<').
+bool looks_like_xml(const std::string &text);
+
+// Throws ppm::Error: IO for a missing or unreadable file (the scene or an include), PARSE for
+// malformed XML and everything the reader refuses, located as above.
+XmlScene read_mitsuba_xml(const std::string &path, const XmlOptions &options);
+
+} // namespace ppm

@@ -1,0 +1,254 @@
+// Mitsuba XML scene files read into libppm's scene structure: parameters and their
+// substitution, includes, references, transforms, the sensor's field of view, the integrator
+// and sampler, lenient substitutes, and located errors for malformed or inconsistent files.
+#include "core/error.h"
+#include "scenefile/mitsuba_xml.h"
+
+#include "test_support.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+using namespace ppm;
+
+namespace {
+
+char folder[4096];
+
+std::string write(const char *name, const std::string &text) {
+    const std::string path = std::string(folder) + "/" + name;
+    FILE *file = std::fopen(path.c_str(), "wb");
+    assert_non_null(file);
+    assert_int_equal(std::fwrite(text.data(), 1, text.size(), file), text.size());
+    assert_int_equal(std::fclose(file), 0);
+    return path;
+}
+
+template <class Load> std::string error_of(Load &&load, ppm_status expected = PPM_ERROR_PARSE) {
+    try {
+        load();
+    } catch (const Error &e) {
+        assert_int_equal(e.status(), expected);
+        return e.what();
+    }
+    fail_msg("no error thrown");
+    return "";
+}
+
+void assert_contains(const std::string &text, const char *fragment) {
+    if (text.find(fragment) == std::string::npos) fail_msg("'%s' lacks '%s'", text.c_str(), fragment);
+}
+
+const char *kCornell = R"(<scene version="3.0.0">
+    <default name="spp" value="16"/>
+    <default name="res" value="64"/>
+    <integrator type="path">
+        <integer name="max_depth" value="8"/>
+    </integrator>
+    <sensor type="perspective">
+        <float name="fov" value="40"/>
+        <string name="fov_axis" value="y"/>
+        <transform name="to_world">
+            <lookat origin="0, 1, 6.8" target="0, 1, 0" up="0, 1, 0"/>
+        </transform>
+        <sampler type="independent">
+            <integer name="sample_count" value="$spp"/>
+        </sampler>
+        <film type="hdrfilm">
+            <integer name="width" value="$res"/>
+            <integer name="height" value="$res"/>
+            <rfilter type="gaussian"/>
+        </film>
+    </sensor>
+    <bsdf type="twosided" id="white">
+        <bsdf type="diffuse">
+            <rgb name="reflectance" value="0.75, 0.75, 0.75"/>
+        </bsdf>
+    </bsdf>
+    <include filename="shapes.xml"/>
+</scene>
+)";
+
+const char *kShapes = R"(<scene version="3.0.0">
+    <shape type="rectangle">
+        <transform name="to_world">
+            <scale value="2"/>
+            <rotate x="1" angle="-90"/>
+            <translate y="2"/>
+        </transform>
+        <ref id="white"/>
+        <emitter type="area">
+            <rgb name="radiance" value="10"/>
+        </emitter>
+    </shape>
+    <shape type="sphere">
+        <point name="center" x="0" y="0.5" z="0"/>
+        <float name="radius" value="0.5"/>
+        <bsdf type="dielectric">
+            <string name="int_ior" value="bk7"/>
+        </bsdf>
+    </shape>
+</scene>
+)";
+
+void a_scene_with_defaults_includes_and_refs_maps_onto_the_json_structure(void **) {
+    const std::string path = write("cornell.xml", kCornell);
+    write("shapes.xml", kShapes);
+    XmlOptions options;
+    options.defines["res"] = "32"; // wins over the file's default
+    const XmlScene scene = read_mitsuba_xml(path, options);
+    const Json::Value &root = scene.root;
+
+    assert_int_equal(root["integrator"]["max_depth"].asInt(), 7); // Mitsuba counts the emitter
+    assert_int_equal(root["integrator"]["passes"].asInt(), 16);   // sample_count, from the default
+    assert_int_equal(root["sensor"]["film"]["width"].asInt(), 32);
+    // fov 40 along y on a square film is 40 along x too.
+    assert_close(root["sensor"]["fov"].asDouble(), 40.0, 1e-12);
+    assert_close(root["sensor"]["to_world"][0]["look_at"]["origin"][2].asDouble(), 6.8, 0);
+
+    assert_string_equal(root["bsdfs"]["white"]["type"].asCString(), "diffuse"); // twosided unwrapped
+    assert_close(root["bsdfs"]["white"]["reflectance"][1].asDouble(), 0.75, 0);
+
+    const Json::Value &shapes = root["shapes"];
+    assert_int_equal(shapes.size(), 2);
+    assert_string_equal(shapes[0]["bsdf"].asCString(), "white");
+    assert_close(shapes[0]["emitter"]["radiance"][2].asDouble(), 10, 0);
+    const Json::Value &ops = shapes[0]["to_world"];
+    assert_close(ops[0]["scale"].asDouble(), 2, 0);
+    assert_close(ops[1]["rotate"]["axis"][0].asDouble(), 1, 0);
+    assert_close(ops[1]["rotate"]["angle"].asDouble(), -90, 0);
+    assert_close(ops[2]["translate"][1].asDouble(), 2, 0);
+    assert_close(shapes[1]["bsdf"]["int_ior"].asDouble(), 1.5046, 0); // Mitsuba's named IOR
+    assert_close(shapes[1]["center"][1].asDouble(), 0.5, 0);
+
+    // Every value knows where it came from, also across the include.
+    assert_contains(scene.sources.location(static_cast<std::size_t>(shapes[1]["radius"].getOffsetStart())),
+                    "shapes.xml:15:9");
+    assert_contains(scene.sources.location(static_cast<std::size_t>(root["sensor"]["fov"].getOffsetStart())),
+                    "cornell.xml:8:9");
+
+    // What libppm reads differently is said once per element.
+    std::string warnings;
+    for (const std::string &w : scene.warnings) warnings += w + "\n";
+    assert_contains(warnings, "integrator 'path' read as \"render this scene\"");
+    assert_contains(warnings, "pixel filter 'gaussian' read as a box filter");
+}
+
+void the_field_of_view_is_converted_to_the_x_axis(void **) {
+    struct Case {
+        const char *axis;
+        double expected_tan_ratio; // tan(fov_x / 2) / tan(fov / 2) on a 200 x 100 film
+    } cases[] = {{"x", 1}, {"y", 2}, {"diagonal", 2 / std::sqrt(5.0)}, {"smaller", 2}, {"larger", 1}};
+    for (const Case &c : cases) {
+        const std::string path =
+            write("fov.xml", std::string(R"(<scene version="3.0.0"><sensor type="perspective">)") +
+                                 R"(<float name="fov" value="30"/><string name="fov_axis" value=")" + c.axis +
+                                 R"("/><film type="hdrfilm"><integer name="width" value="200"/>)" +
+                                 R"(<integer name="height" value="100"/></film></sensor></scene>)");
+        const XmlScene scene = read_mitsuba_xml(path, {});
+        const double fov_x = scene.root["sensor"]["fov"].asDouble();
+        assert_close(std::tan(fov_x * M_PI / 360) / std::tan(30 * M_PI / 360), c.expected_tan_ratio, 1e-12);
+    }
+}
+
+void lenient_mode_substitutes_with_a_warning_and_strict_mode_keeps_the_type(void **) {
+    const std::string path = write("rough.xml", R"(<scene version="3.0.0">
+    <emitter type="envmap"><string name="filename" value="sky.exr"/></emitter>
+    <shape type="sphere">
+        <bsdf type="roughconductor"><float name="alpha" value="0.1"/></bsdf>
+    </shape>
+    <medium type="homogeneous" id="fog"/>
+</scene>
+)");
+    XmlOptions lenient;
+    lenient.lenient = true;
+    const XmlScene scene = read_mitsuba_xml(path, lenient);
+    assert_string_equal(scene.root["shapes"][0]["bsdf"]["type"].asCString(), "diffuse");
+    assert_false(scene.root.isMember("emitters"));
+    std::string warnings;
+    for (const std::string &w : scene.warnings) warnings += w + "\n";
+    assert_contains(warnings, "rough.xml:2:5: <emitter>: emitter type 'envmap' is not rendered by libppm: skipped");
+    assert_contains(warnings, "rough.xml:4:9: <bsdf>: BSDF type 'roughconductor'");
+    assert_contains(warnings, "rough.xml:6:5: <medium>");
+
+    // Strict: the medium is refused here; the BSDF and emitter types pass on to the builder,
+    // which names them.
+    assert_contains(error_of([&] { read_mitsuba_xml(path, {}); }), "rough.xml:6:5: <medium>: <medium> is not rendered");
+}
+
+void malformed_or_inconsistent_files_are_located_errors(void **) {
+    assert_contains(error_of([&] {
+                        read_mitsuba_xml(
+                            write("a.xml", "<scene version=\"3.0.0\">\n<shape type=\"sphere\">\n</scene>\n"), {});
+                    }),
+                    "a.xml:3:");
+    assert_contains(error_of([&] {
+                        read_mitsuba_xml(write("b.xml", "<scene version=\"3.0.0\"><shape type=\"obj\"><string "
+                                                        "name=\"filename\" value=\"$mesh\"/></shape></scene>"),
+                                         {});
+                    }),
+                    "the parameter $mesh has no value");
+    assert_contains(
+        error_of([&] {
+            read_mitsuba_xml(
+                write("c.xml",
+                      "<scene version=\"3.0.0\">\n  <shape type=\"sphere\"><ref id=\"nothing\"/></shape></scene>"),
+                {});
+        }),
+        "c.xml:2:24: <ref>: no object has the id \"nothing\"");
+    write("loop1.xml", "<scene version=\"3.0.0\"><include filename=\"loop2.xml\"/></scene>");
+    write("loop2.xml", "<scene version=\"3.0.0\">\n<include filename=\"loop1.xml\"/></scene>");
+    assert_contains(error_of([&] { read_mitsuba_xml(std::string(folder) + "/loop1.xml", {}); }),
+                    "loop2.xml:2:1: <include>: cyclic include");
+    const std::string missing = error_of(
+        [&] {
+            read_mitsuba_xml(write("d.xml", "<scene version=\"3.0.0\"><include filename=\"gone.xml\"/></scene>"), {});
+        },
+        PPM_ERROR_IO);
+    assert_contains(missing, "d.xml:1:24: <include>");
+    assert_contains(missing, "gone.xml");
+    assert_contains(error_of([&] { read_mitsuba_xml(write("e.xml", "<scene><shape type=\"sphere\"/></scene>"), {}); }),
+                    "the 'version' attribute is missing");
+    assert_contains(error_of([&] {
+                        read_mitsuba_xml(write("f.xml", "<scene version=\"3.0.0\"><shape type=\"sphere\"><float "
+                                                        "name=\"radius\" value=\"one\"/></shape></scene>"),
+                                         {});
+                    }),
+                    "'one' is not a finite number");
+    assert_contains(error_of([&] {
+                        read_mitsuba_xml(
+                            write("g.xml", "<scene version=\"3.0.0\"><shape type=\"sphere\"><transform "
+                                           "name=\"to_world\"><shear value=\"1\"/></transform></shape></scene>"),
+                            {});
+                    }),
+                    "unknown transform operation");
+    assert_contains(error_of([&] {
+                        read_mitsuba_xml(
+                            write("h.xml", "<scene version=\"3.0.0\"><bsdf type=\"dielectric\" id=\"x\"><string "
+                                           "name=\"int_ior\" value=\"unobtainium\"/></bsdf></scene>"),
+                            {});
+                    }),
+                    "int_ior \"unobtainium\" is not a known material");
+    assert_contains(error_of([&] { read_mitsuba_xml(write("i.xml", "<json/>"), {}); }),
+                    "the root element must be <scene>");
+}
+
+int setup(void **) { return test_make_folder(folder, sizeof folder, "ppm-xml-"); }
+int teardown(void **) {
+    test_remove_folder(folder);
+    return 0;
+}
+
+} // namespace
+
+int main() {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(a_scene_with_defaults_includes_and_refs_maps_onto_the_json_structure),
+        cmocka_unit_test(the_field_of_view_is_converted_to_the_x_axis),
+        cmocka_unit_test(lenient_mode_substitutes_with_a_warning_and_strict_mode_keeps_the_type),
+        cmocka_unit_test(malformed_or_inconsistent_files_are_located_errors),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}
