@@ -131,6 +131,42 @@ static void serialized_file_loads_and_a_wrong_index_is_refused(void **state) {
     assert_close(hit_distance(f->scene, 1.5, 0.5), 4.0, 1e-12);
 }
 
+/* A JSON scene file naming both mesh files, and a point light placed by to_world. */
+static void scene_files_take_ply_and_serialized_shapes(void **state) {
+    scene_fixture *f = *state;
+    char path[4200];
+    snprintf(path, sizeof path, "%s/square.ply", folder);
+    write_file(path, square_ply, strlen(square_ply));
+    unsigned char bytes[1024];
+    const size_t size = serialized_square(bytes, sizeof bytes);
+    snprintf(path, sizeof path, "%s/square.serialized", folder);
+    write_file(path, bytes, size);
+    const char *scene_text =
+        "{ \"emitters\": [{ \"type\": \"point\", \"to_world\": { \"translate\": [1, 1, 3] } }],\n"
+        "  \"shapes\": [{ \"type\": \"ply\", \"filename\": \"square.ply\" },\n"
+        "    { \"type\": \"serialized\", \"filename\": \"square.serialized\", \"shape_index\": 0,\n"
+        "      \"to_world\": { \"translate\": [10, 0, 0] } }] }\n";
+    snprintf(path, sizeof path, "%s/meshes.json", folder);
+    write_file(path, scene_text, strlen(scene_text));
+    ppm_context_set_warning_callback(f->context, NULL, NULL);
+    ppm_scene_file file = NULL;
+    assert_int_equal(ppm_scene_file_load(f->context, path, &file), PPM_OK);
+    ppm_scene scene = NULL;
+    assert_int_equal(ppm_scene_file_get_scene(file, &scene), PPM_OK);
+    assert_close(hit_distance(scene, 1.5, 0.5), 4.0, 1e-12);
+    assert_close(hit_distance(scene, 11.5, 0.5), 4.0, 1e-12); /* the serialized square, moved */
+    ppm_scene_release(scene);
+    ppm_scene_file_release(file);
+
+    /* A shape_index beyond the file's meshes is located at the shape. */
+    const char *bad_index = "{ \"shapes\": [{ \"type\": \"serialized\", \"filename\": \"square.serialized\",\n"
+                            "  \"shape_index\": 2 }] }\n";
+    write_file(path, bad_index, strlen(bad_index));
+    assert_int_equal(ppm_scene_file_load(f->context, path, &file), PPM_ERROR_PARSE);
+    assert_non_null(strstr(ppm_last_error_message(), "meshes.json:1:50: shapes[0].filename"));
+    assert_non_null(strstr(ppm_last_error_message(), "shape_index 2 is out of range"));
+}
+
 static int setup(void **state) {
     if (test_make_folder(folder, sizeof folder, "ppm-mesh-files-") != 0) return -1;
     return scene_fixture_setup(state);
@@ -146,6 +182,7 @@ int main(void) {
         cmocka_unit_test_setup_teardown(ply_file_loads_is_hit_and_warns_of_colours, setup, teardown),
         cmocka_unit_test_setup_teardown(damaged_or_missing_ply_files_are_refused_by_name, setup, teardown),
         cmocka_unit_test_setup_teardown(serialized_file_loads_and_a_wrong_index_is_refused, setup, teardown),
+        cmocka_unit_test_setup_teardown(scene_files_take_ply_and_serialized_shapes, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

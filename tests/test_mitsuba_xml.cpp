@@ -218,17 +218,17 @@ void malformed_or_inconsistent_files_are_located_errors(void **) {
                     }),
                     "'one' is not a finite number");
     assert_contains(error_of([&] {
-                        read_mitsuba_xml(
-                            write("g.xml", "<scene version=\"3.0.0\"><shape type=\"sphere\"><transform "
-                                           "name=\"to_world\"><shear value=\"1\"/></transform></shape></scene>"),
-                            {});
+                        read_mitsuba_xml(write("g.xml",
+                                               "<scene version=\"3.0.0\"><shape type=\"sphere\"><transform "
+                                               "name=\"to_world\"><shear value=\"1\"/></transform></shape></scene>"),
+                                         {});
                     }),
                     "unknown transform operation");
     assert_contains(error_of([&] {
-                        read_mitsuba_xml(
-                            write("h.xml", "<scene version=\"3.0.0\"><bsdf type=\"dielectric\" id=\"x\"><string "
-                                           "name=\"int_ior\" value=\"unobtainium\"/></bsdf></scene>"),
-                            {});
+                        read_mitsuba_xml(write("h.xml",
+                                               "<scene version=\"3.0.0\"><bsdf type=\"dielectric\" id=\"x\"><string "
+                                               "name=\"int_ior\" value=\"unobtainium\"/></bsdf></scene>"),
+                                         {});
                     }),
                     "int_ior \"unobtainium\" is not a known material");
     assert_contains(error_of([&] { read_mitsuba_xml(write("i.xml", "<json/>"), {}); }),

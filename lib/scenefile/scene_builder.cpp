@@ -125,8 +125,13 @@ void SceneBuilder::add_emitter(const JsonNode &emitter) {
     const std::array<double, 3> intensity =
         emitter.has("intensity") ? emitter.at("intensity").color(false) : std::array<double, 3>{1, 1, 1};
     if (type == "point") {
-        emitter.allow_only({"type", "position", "intensity"});
-        const std::array<double, 3> position = emitter.vec3_or("position", {0, 0, 0});
+        // Placed by `position` or, as Mitsuba also allows, by where `to_world` takes the origin.
+        emitter.allow_only({"type", "position", "to_world", "intensity"});
+        if (emitter.has("position") && emitter.has("to_world"))
+            emitter.fail("a point light takes 'position' or 'to_world', not both");
+        const std::array<double, 3> position = emitter.has("to_world")
+                                                   ? to_array(parse_transform(emitter.at("to_world")).point({0, 0, 0}))
+                                                   : emitter.vec3_or("position", {0, 0, 0});
         check(emitter, ppm_scene_add_point_light(scene_, position.data(), intensity.data(), nullptr));
         return;
     }
@@ -169,7 +174,8 @@ std::uint32_t SceneBuilder::shape_material(const JsonNode &shape) {
 
 void SceneBuilder::add_shape(const JsonNode &shape) {
     shape.require_object();
-    const std::string type = shape.at("type").one_of({"sphere", "rectangle", "quad", "obj", "bezier"});
+    const std::string type =
+        shape.at("type").one_of({"sphere", "rectangle", "quad", "obj", "ply", "serialized", "bezier"});
     const Affine to_world = shape.has("to_world") ? parse_transform(shape.at("to_world")) : Affine{};
     // Transforms that the shape cannot take in its own parameters go to the geometry.
     bool transform_geometry = !is_identity(to_world);
@@ -194,10 +200,18 @@ void SceneBuilder::add_shape(const JsonNode &shape) {
                                     v = to_array(to_world.vector(edge_v));
         check(shape, ppm_scene_add_quad(scene_, o.data(), u.data(), v.data(), &geom));
         transform_geometry = false;
-    } else if (type == "obj") {
+    } else if (type == "obj" || type == "ply") {
         shape.allow_only({"type", "bsdf", "emitter", "to_world", "filename"});
         const JsonNode filename = shape.at("filename");
-        check(filename, ppm_scene_load_obj(scene_, existing_file(filename).c_str(), &geom));
+        const std::string path = existing_file(filename);
+        check(filename, type == "obj" ? ppm_scene_load_obj(scene_, path.c_str(), &geom)
+                                      : ppm_scene_load_ply(scene_, path.c_str(), &geom));
+    } else if (type == "serialized") {
+        shape.allow_only({"type", "bsdf", "emitter", "to_world", "filename", "shape_index"});
+        const JsonNode filename = shape.at("filename");
+        const std::int64_t index = shape.has("shape_index") ? shape.at("shape_index").integer(0, 0xFFFFFFFF) : 0;
+        check(filename, ppm_scene_load_serialized(scene_, existing_file(filename).c_str(),
+                                                  static_cast<std::uint32_t>(index), &geom));
     } else {
         shape.allow_only({"type", "bsdf", "emitter", "to_world", "filename", "patches", "uv_rects"});
         if (shape.has("filename") == shape.has("patches"))
