@@ -153,6 +153,55 @@ void the_field_of_view_is_converted_to_the_x_axis(void **) {
     }
 }
 
+// Reference values printed by Mitsuba 3.9.1 (scalar_rgb) for the same elements, read back with
+// mitsuba.traverse: a reflectance is weighed with D65, an emission is not, and a single value
+// is grey as a reflectance but equal-energy white as an emission.
+void spectra_become_the_rgb_mitsuba_gives_them(void **) {
+    const std::string path = write("spectra.xml", R"(<scene version="3.0.0">
+    <bsdf type="diffuse" id="measured">
+        <spectrum name="reflectance" value="400:0.1, 500:0.5, 600:0.8, 700:0.3"/>
+    </bsdf>
+    <bsdf type="diffuse" id="flat"><spectrum name="reflectance" value="360:1, 830:1"/></bsdf>
+    <bsdf type="diffuse" id="grey"><spectrum name="reflectance" value="0.5"/></bsdf>
+    <shape type="sphere">
+        <emitter type="area"><spectrum name="radiance" value="400:0.1, 500:0.5, 600:0.8, 700:0.3"/></emitter>
+    </shape>
+    <shape type="sphere">
+        <emitter type="area"><spectrum name="radiance" value="5"/></emitter>
+    </shape>
+</scene>
+)");
+    const XmlScene scene = read_mitsuba_xml(path, {});
+    const auto assert_rgb = [](const Json::Value &value, double r, double g, double b) {
+        assert_close(value[0].asDouble(), r, 2e-6);
+        assert_close(value[1].asDouble(), g, 2e-6);
+        assert_close(value[2].asDouble(), b, 2e-6);
+    };
+    assert_rgb(scene.root["bsdfs"]["measured"]["reflectance"], 0.752187, 0.645269, 0.271706);
+    assert_rgb(scene.root["bsdfs"]["flat"]["reflectance"], 0.998985, 0.998874, 0.998802);
+    assert_rgb(scene.root["bsdfs"]["grey"]["reflectance"], 0.5, 0.5, 0.5);
+    assert_rgb(scene.root["shapes"][0]["emitter"]["radiance"], 0.883847, 0.618319, 0.236324);
+    assert_close(scene.root["shapes"][1]["emitter"]["radiance"][0].asDouble(), 6.02397, 2e-5);
+    assert_close(scene.root["shapes"][1]["emitter"]["radiance"][1].asDouble(), 4.74146, 2e-5);
+    assert_close(scene.root["shapes"][1]["emitter"]["radiance"][2].asDouble(), 4.54458, 2e-5);
+
+    // A narrow band outside the sRGB gamut is clamped, with a warning (Mitsuba: 0.00939, 0, 0.2017).
+    const std::string narrow = write("narrow.xml", R"(<scene version="3.0.0">
+    <bsdf type="diffuse" id="blue"><spectrum name="reflectance" value="450:1, 460:1"/></bsdf>
+</scene>
+)");
+    const XmlScene clamped = read_mitsuba_xml(narrow, {});
+    assert_rgb(clamped.root["bsdfs"]["blue"]["reflectance"], 0.00939023, 0, 0.201667);
+    assert_int_equal(clamped.warnings.size(), 1);
+    assert_contains(clamped.warnings[0], "narrow.xml:2:36: <spectrum>: the spectrum's colour");
+    assert_contains(error_of([&] {
+                        read_mitsuba_xml(write("bad.xml", R"(<scene version="3.0.0"><bsdf type="diffuse" id="x">
+<spectrum name="reflectance" value="500:0.1, 400:0.2"/></bsdf></scene>)"),
+                                         {});
+                    }),
+                    "bad.xml:2:1: <spectrum>: wavelengths must increase");
+}
+
 void lenient_mode_substitutes_with_a_warning_and_strict_mode_keeps_the_type(void **) {
     const std::string path = write("rough.xml", R"(<scene version="3.0.0">
     <emitter type="envmap"><string name="filename" value="sky.exr"/></emitter>
@@ -247,6 +296,7 @@ int main() {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(a_scene_with_defaults_includes_and_refs_maps_onto_the_json_structure),
         cmocka_unit_test(the_field_of_view_is_converted_to_the_x_axis),
+        cmocka_unit_test(spectra_become_the_rgb_mitsuba_gives_them),
         cmocka_unit_test(lenient_mode_substitutes_with_a_warning_and_strict_mode_keeps_the_type),
         cmocka_unit_test(malformed_or_inconsistent_files_are_located_errors),
     };

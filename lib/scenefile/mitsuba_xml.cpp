@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "io/text_file.h"
+#include "math/spectrum.h"
 
 #include <pugixml.hpp>
 
@@ -307,17 +308,60 @@ private:
         return located(out, node, source);
     }
 
-    Json::Value colour(const pugi::xml_node &node, const Source &source) const {
+    // <rgb> as it is; <spectrum> as Mitsuba 3's RGB variants read it (math/spectrum.cpp). In an
+    // emitter a spectrum is an emission: a single value is then the equal-energy white of that
+    // power, not grey. Reflectances are clamped to [0, 1], emissions to >= 0, with a warning.
+    Json::Value colour(const pugi::xml_node &node, const Source &source, bool emission) {
         const std::string tag = node.name();
         const std::string text = substitute(node, source, "value");
-        if (tag == "spectrum" && text.find(':') != std::string::npos)
-            error(node, source,
-                  "spectra given as wavelength:value pairs are not supported yet; give an <rgb> or a single value");
-        const std::vector<double> v = parse_numbers(text, node, source);
-        if (v.size() != 3 && v.size() != 1) error(node, source, "expected 3 numbers (r, g, b) or 1 (grey)");
         Json::Value out(Json::arrayValue);
-        for (int i = 0; i < 3; ++i) out.append(v.size() == 1 ? v[0] : v[i]);
+        if (tag == "rgb") {
+            const std::vector<double> v = parse_numbers(text, node, source);
+            if (v.size() != 3 && v.size() != 1) error(node, source, "expected 3 numbers (r, g, b) or 1 (grey)");
+            for (int i = 0; i < 3; ++i) out.append(v.size() == 1 ? v[0] : v[i]);
+            return located(out, node, source);
+        }
+        std::vector<double> wavelengths, values;
+        if (text.find(':') == std::string::npos) {
+            const std::vector<double> v = parse_numbers(text, node, source);
+            if (v.size() != 1) error(node, source, "expected one value or wavelength:value pairs");
+            // A constant spectrum: grey as a reflectance; as an emission, XYZ = (v, v, v) in sRGB.
+            const Rgb white = emission ? xyz_to_srgb(1, 1, 1) : Rgb(1.0);
+            for (double c : {white.r, white.g, white.b}) out.append(v[0] * c);
+            return located(out, node, source);
+        } else {
+            std::string pair;
+            for (std::size_t i = 0; i <= text.size(); ++i) {
+                if (i < text.size() && text[i] != ',') {
+                    pair += text[i];
+                    continue;
+                }
+                const std::size_t colon = pair.find(':');
+                if (colon == std::string::npos) error(node, source, "'" + pair + "' is not a wavelength:value pair");
+                const double w = parse_number(trimmed(pair.substr(0, colon)), node, source);
+                if (!wavelengths.empty() && !(w > wavelengths.back()))
+                    error(node, source, "wavelengths must increase (" + pair + ")");
+                wavelengths.push_back(w);
+                values.push_back(parse_number(trimmed(pair.substr(colon + 1)), node, source));
+                pair.clear();
+            }
+        }
+        Rgb rgb = spectrum_to_rgb(wavelengths, values, !emission);
+        const Rgb clamped(std::max(rgb.r, 0.0), std::max(rgb.g, 0.0), std::max(rgb.b, 0.0));
+        const Rgb bounded =
+            emission ? clamped : Rgb(std::min(clamped.r, 1.0), std::min(clamped.g, 1.0), std::min(clamped.b, 1.0));
+        if (!(bounded.r == rgb.r && bounded.g == rgb.g && bounded.b == rgb.b))
+            out_.warnings.push_back(where(node, source) + ": the spectrum's colour (" + format_number(rgb.r) + ", " +
+                                    format_number(rgb.g) + ", " + format_number(rgb.b) +
+                                    ") lies outside the sRGB gamut" + (emission ? "" : " or above 1") + ": clamped");
+        for (double c : {bounded.r, bounded.g, bounded.b}) out.append(c);
         return located(out, node, source);
+    }
+
+    static std::string trimmed(const std::string &text) {
+        const std::size_t first = text.find_first_not_of(" \t\n\r");
+        if (first == std::string::npos) return "";
+        return text.substr(first, text.find_last_not_of(" \t\n\r") - first + 1);
     }
 
     // ---- transforms ---------------------------------------------------------------------
@@ -408,7 +452,7 @@ private:
                 check_attributes(child, source, {"name", "value", "x", "y", "z"});
                 const std::string name = required(child, source, "name");
                 if (out.isMember(name)) error(child, source, "the parameter '" + name + "' is given twice");
-                out[name] = property(child, source);
+                out[name] = property(child, source, tag == "emitter");
             } else if (kind == "transform") {
                 check_attributes(child, source, {"name"});
                 out[required(child, source, "name")] = transform(child, source);
@@ -435,10 +479,10 @@ private:
         return located(out, node, source);
     }
 
-    Json::Value property(const pugi::xml_node &node, const Source &source) const {
+    Json::Value property(const pugi::xml_node &node, const Source &source, bool in_emitter) {
         const std::string kind = node.name();
         if (kind == "point" || kind == "vector") return vector3(node, source);
-        if (kind == "rgb" || kind == "spectrum") return colour(node, source);
+        if (kind == "rgb" || kind == "spectrum") return colour(node, source, in_emitter);
         const std::string text = substitute(node, source, "value");
         if (kind == "string") return located(Json::Value(text), node, source);
         if (kind == "boolean") {
