@@ -167,6 +167,47 @@ static void scene_files_take_ply_and_serialized_shapes(void **state) {
     assert_non_null(strstr(ppm_last_error_message(), "shape_index 2 is out of range"));
 }
 
+/* Mitsuba's cube, [-1, 1]^3 placed by to_world, with outward face normals. */
+static void the_cube_shape_is_mitsubas_cube(void **state) {
+    scene_fixture *f = *state;
+    const char *scene_text = "{ \"shapes\": [{ \"type\": \"cube\",\n"
+                             "  \"to_world\": [{ \"scale\": 2 }, { \"translate\": [0, 0, 5] }] }] }\n";
+    char path[4200];
+    snprintf(path, sizeof path, "%s/cube.json", folder);
+    write_file(path, scene_text, strlen(scene_text));
+    ppm_scene_file file = NULL;
+    assert_int_equal(ppm_scene_file_load(f->context, path, &file), PPM_OK);
+    ppm_scene scene = NULL;
+    assert_int_equal(ppm_scene_file_get_scene(file, &scene), PPM_OK);
+    /* Down the z axis from z = 20: the top face at z = 7. */
+    const struct {
+        double org[3], dir[3], t, normal[3];
+    } rays[] = {
+        {{0.5, -0.3, 20}, {0, 0, -1}, 13, {0, 0, 1}}, {{0.5, -0.3, -20}, {0, 0, 1}, 23, {0, 0, -1}},
+        {{-20, 1.5, 4}, {1, 0, 0}, 18, {-1, 0, 0}},   {{1, 20, 6}, {0, -1, 0}, 18, {0, 1, 0}},
+        {{3, 0, 4}, {0, 1, 0}, INFINITY, {0, 0, 0}},
+    };
+    for (size_t i = 0; i < sizeof rays / sizeof rays[0]; ++i) {
+        ppm_ray ray = {{rays[i].org[0], rays[i].org[1], rays[i].org[2]},
+                       0,
+                       {rays[i].dir[0], rays[i].dir[1], rays[i].dir[2]},
+                       INFINITY};
+        ppm_hit hit;
+        assert_int_equal(ppm_scene_intersect(scene, &ray, 1, &hit), PPM_OK);
+        if (isinf(rays[i].t)) {
+            assert_int_equal(hit.geom_id, PPM_INVALID_ID);
+            continue;
+        }
+        assert_close(hit.t, rays[i].t, 1e-12);
+        for (int a = 0; a < 3; ++a) {
+            assert_close(hit.ng[a], rays[i].normal[a], 1e-12);
+            assert_close(hit.ns[a], rays[i].normal[a], 1e-12);
+        }
+    }
+    ppm_scene_release(scene);
+    ppm_scene_file_release(file);
+}
+
 static int setup(void **state) {
     if (test_make_folder(folder, sizeof folder, "ppm-mesh-files-") != 0) return -1;
     return scene_fixture_setup(state);
@@ -183,6 +224,7 @@ int main(void) {
         cmocka_unit_test_setup_teardown(damaged_or_missing_ply_files_are_refused_by_name, setup, teardown),
         cmocka_unit_test_setup_teardown(serialized_file_loads_and_a_wrong_index_is_refused, setup, teardown),
         cmocka_unit_test_setup_teardown(scene_files_take_ply_and_serialized_shapes, setup, teardown),
+        cmocka_unit_test_setup_teardown(the_cube_shape_is_mitsubas_cube, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

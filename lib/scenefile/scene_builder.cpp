@@ -1,6 +1,7 @@
 #include "scenefile/scene_builder.h"
 
 #include "core/error.h"
+#include "geometry/cube_mesh.h"
 #include "scenefile/transform.h"
 
 #include <sys/stat.h>
@@ -175,7 +176,7 @@ std::uint32_t SceneBuilder::shape_material(const JsonNode &shape) {
 void SceneBuilder::add_shape(const JsonNode &shape) {
     shape.require_object();
     const std::string type =
-        shape.at("type").one_of({"sphere", "rectangle", "quad", "obj", "ply", "serialized", "bezier"});
+        shape.at("type").one_of({"sphere", "rectangle", "quad", "cube", "obj", "ply", "serialized", "bezier"});
     const Affine to_world = shape.has("to_world") ? parse_transform(shape.at("to_world")) : Affine{};
     // Transforms that the shape cannot take in its own parameters go to the geometry.
     bool transform_geometry = !is_identity(to_world);
@@ -200,6 +201,17 @@ void SceneBuilder::add_shape(const JsonNode &shape) {
                                     v = to_array(to_world.vector(edge_v));
         check(shape, ppm_scene_add_quad(scene_, o.data(), u.data(), v.data(), &geom));
         transform_geometry = false;
+    } else if (type == "cube") {
+        shape.allow_only({"type", "bsdf", "emitter", "to_world"});
+        const MeshData cube = cube_mesh();
+        std::vector<double> positions, normals;
+        for (std::size_t i = 0; i < cube.positions.size(); ++i)
+            for (int axis = 0; axis < 3; ++axis) {
+                positions.push_back(cube.positions[i][axis]);
+                normals.push_back(cube.normals[i][axis]);
+            }
+        check(shape, ppm_scene_add_triangle_mesh(scene_, positions.data(), cube.positions.size(), cube.indices.data(),
+                                                 cube.indices.size() / 3, normals.data(), cube.uvs.data(), &geom));
     } else if (type == "obj" || type == "ply") {
         shape.allow_only({"type", "bsdf", "emitter", "to_world", "filename"});
         const JsonNode filename = shape.at("filename");
