@@ -83,9 +83,9 @@ void rays_leaving_quads_meet_the_next_layer(void **) {
             const ppm_ray ray = spawn_ray(start, dir);
             ppm_hit plain, hinted;
             scene.intersect(ray, plain);
-            scene.intersect(ray, hinted, true, &start);
+            scene.intersect(ray, hinted, true, RayHints{&start});
             assert_true(identical(plain, hinted));
-            assert_true(scene.occluded(ray) == scene.occluded(ray, &start));
+            assert_true(scene.occluded(ray) == scene.occluded(ray, RayHints{&start}));
             const int next = k + int(up);
             if (next < 0 || next >= kLayers) continue;
             const double t = (next - start.p[2]) / dir.z;
@@ -131,12 +131,12 @@ void shadow_rays_skip_only_their_light(void **) {
                                std::fabs(bx) < margin || std::fabs(by) < margin || std::fabs(by - 2) < margin;
         if (near_edge) continue;
         const bool expected = through_second || through_blocker;
-        assert_true(scene.occluded(ray, &start, s.light) == expected);
-        assert_true(scene.occluded(ray, &start) == expected);
-        assert_true(scene.occluded(ray, nullptr, s.light) == expected);
+        assert_true(scene.occluded(ray, RayHints{&start, s.light}) == expected);
+        assert_true(scene.occluded(ray, RayHints{&start}) == expected);
+        assert_true(scene.occluded(ray, RayHints{nullptr, s.light}) == expected);
         // Naming the other light hides that one instead (not a call the renderer makes: it
         // shows the skip is per geometry).
-        assert_true(scene.occluded(ray, &start, s.second_light) == through_blocker);
+        assert_true(scene.occluded(ray, RayHints{&start, s.second_light}) == through_blocker);
         (expected ? blocked : free)++;
     }
     assert_true(blocked > 200);

@@ -172,9 +172,9 @@ void hint_changes_no_answer_on_the_teapot(void **) {
             const ppm_ray ray = spawn_ray(start, dir);
             ppm_hit plain, hinted;
             scene.intersect(ray, plain);
-            scene.intersect(ray, hinted, true, &start);
+            scene.intersect(ray, hinted, true, RayHints{&start});
             assert_true(same_hit(plain, hinted));
-            assert_true(scene.occluded(ray) == scene.occluded(ray, &start));
+            assert_true(scene.occluded(ray) == scene.occluded(ray, RayHints{&start}));
             ++spawned;
             hits += plain.geom_id != PPM_INVALID_ID;
 

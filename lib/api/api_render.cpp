@@ -168,13 +168,15 @@ ppm_status ppm_scene_add_spot_light(ppm_scene scene, const double position[3], c
 }
 
 ppm_status ppm_scene_set_geometry_emission(ppm_scene scene, uint32_t geom_id, const double radiance[3]) {
-    return scene_call(scene, [&](ppm::Scene &s) {
+    return scene_call(scene, [&](ppm_scene_t &s) {
         ppm::Geometry &g = s.geometry(geom_id);
         const ppm::Rgb rgb = read_emission(radiance, "radiance");
         if (!dynamic_cast<ppm::QuadGeometry *>(&g) && !dynamic_cast<ppm::SphereGeometry *>(&g))
             invalid_argument("geometry " + std::to_string(geom_id) + " is a " + g.kind() +
                              "; only quads and spheres can be area lights");
-        g.emission = rgb;
+        s.shading.set_emission(geom_id, rgb);
+        // Every shadow ray towards the light names it (RayHints::skip_geometry).
+        if (!rgb.is_black()) s.prefer_mask_bit(geom_id);
     });
 }
 

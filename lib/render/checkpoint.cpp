@@ -168,7 +168,7 @@ std::uint64_t Renderer::scene_hash() const {
         for (const auto &row : geometry.transform.m)
             for (double v : row) h.add(v);
         h.add(geometry.material);
-        h.add(geometry.emission);
+        h.add(render_scene_.emission(static_cast<std::uint32_t>(g)));
     }
     h.add(scene_->bounds().lower), h.add(scene_->bounds().upper);
     h.add(material_count_);

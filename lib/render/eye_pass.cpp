@@ -94,7 +94,7 @@ void Renderer::add_direct_light(const VisiblePoint *vps, const ppm_hit *const *a
             contributions[k] = vp.weight * f * ls.radiance_over_pdf * std::fabs(wi_local.z);
         }
         for (std::uint32_t k = 0; k < count; ++k)
-            if (!contributions[k].is_black() && !render_scene_.occluded(shadow_rays[k], at[k], light.geometry()))
+            if (!contributions[k].is_black() && !render_scene_.occluded(shadow_rays[k], at[k], light))
                 direct[k] += contributions[k];
     }
 }

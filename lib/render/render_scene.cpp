@@ -10,17 +10,17 @@ namespace ppm {
 
 namespace {
 
-Light area_light(const Geometry &g, uint32_t geom_id, double offset) {
+Light area_light(const Geometry &g, uint32_t geom_id, const Rgb &emission, double offset) {
     if (auto *quad = dynamic_cast<const QuadGeometry *>(&g)) {
         const QuadGeometry::Data &d = quad->data();
-        Light light = Light::quad(d.origin, d.edge_u, d.edge_v, g.emission);
+        Light light = Light::quad(d.origin, d.edge_u, d.edge_v, emission);
         light.set_surface_offset(offset);
         light.set_geometry(geom_id);
         return light;
     }
     if (auto *sphere = dynamic_cast<const SphereGeometry *>(&g)) {
         const SphereGeometry::Data &d = sphere->data();
-        Light light = Light::sphere(d.center, d.radius, g.emission);
+        Light light = Light::sphere(d.center, d.radius, emission);
         light.set_surface_offset(offset);
         light.set_geometry(geom_id);
         return light;
@@ -49,7 +49,9 @@ RenderScene::RenderScene(const Scene &scene, const SceneShading &shading) : scen
                              std::to_string(g.material) + ", but the scene has only " +
                              std::to_string(shading.materials().size()) + " materials");
         }
-        if (!g.emission.is_black()) lights_.push_back(area_light(g, id, offset));
+        geometry_emission_.push_back(shading.emission(id));
+        if (!geometry_emission_.back().is_black())
+            lights_.push_back(area_light(g, id, geometry_emission_.back(), offset));
     }
     double sum = 0;
     for (const Light &light : lights_) {
@@ -68,7 +70,7 @@ size_t RenderScene::pick_light(double u, double *probability) const {
 }
 
 bool RenderScene::intersect(const ppm_ray &ray, SurfacePoint &out, const ppm_hit *leaving) const {
-    scene_->intersect(ray, out.hit, false, leaving);
+    scene_->intersect(ray, out.hit, false, RayHints{leaving});
     if (out.hit.geom_id == PPM_INVALID_ID) return false;
     shade(ray, out);
     return true;
@@ -101,7 +103,8 @@ void RenderScene::shade(const ppm_ray &ray, SurfacePoint &out) const {
     } else {
         out.bsdf = material.bsdf;
     }
-    out.emitted = (!g.emission.is_black() && dot(out.ng, wo) > 0) ? g.emission : Rgb();
+    const Rgb &emission = geometry_emission_[out.hit.geom_id];
+    out.emitted = (!emission.is_black() && dot(out.ng, wo) > 0) ? emission : Rgb();
 }
 
 } // namespace ppm

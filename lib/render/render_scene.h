@@ -43,15 +43,18 @@ public:
     size_t pick_light(double u, double *probability) const;
 
     // Closest hit along ray, described; false on a miss. `leaving`: the hit the ray was
-    // spawned from, if any (Scene::intersect); it may be &out.hit.
+    // spawned from, if any (RayHints::leaving); it may be &out.hit.
     bool intersect(const ppm_ray &ray, SurfacePoint &out, const ppm_hit *leaving = nullptr) const;
     // The same for up to Scene::max_stream rays from no surface (a camera's), traced as a
     // coherent stream: found[i] and out[i] as intersect(rays[i], out[i]) gives.
     void intersect_stream(const ppm_ray *rays, size_t count, SurfacePoint *out, bool *found) const;
-    // Whether anything blocks the ray; `toward`: the light's geometry it runs to (Scene::occluded).
-    bool occluded(const ppm_ray &ray, const ppm_hit *leaving = nullptr, uint32_t toward = PPM_INVALID_ID) const {
-        return scene_->occluded(ray, leaving, toward);
+    // Whether anything blocks a shadow ray leaving `leaving` (may be null) that stops short of
+    // `light`'s surface, so that the light's own geometry cannot block it.
+    bool occluded(const ppm_ray &ray, const ppm_hit *leaving, const Light &light) const {
+        return scene_->occluded(ray, RayHints{leaving, light.geometry()});
     }
+    // Area light radiance of a geometry (black for most).
+    const Rgb &emission(uint32_t geom_id) const { return geometry_emission_[geom_id]; }
 
 private:
     // Fills `out` from its described hit, seen along `ray`.
@@ -59,6 +62,7 @@ private:
 
     const Scene *scene_;
     std::vector<Material> geometry_materials_; // one per geometry
+    std::vector<Rgb> geometry_emission_;       // one per geometry
     std::vector<Light> lights_;
     std::vector<double> light_cdf_; // cumulative selection probabilities
     Rgb total_power_;

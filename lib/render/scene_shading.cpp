@@ -25,4 +25,11 @@ uint32_t SceneShading::add_light(Light light) {
     return static_cast<uint32_t>(lights_.size() - 1);
 }
 
+void SceneShading::set_emission(uint32_t geom_id, const Rgb &radiance) {
+    if (geom_id >= emission_.size()) emission_.resize(std::size_t(geom_id) + 1);
+    emission_[geom_id] = radiance;
+}
+
+Rgb SceneShading::emission(uint32_t geom_id) const { return geom_id < emission_.size() ? emission_[geom_id] : Rgb(); }
+
 } // namespace ppm

@@ -4,7 +4,6 @@
 
 #include <ppm/ppm.h>
 
-#include "math/rgb.h"
 #include "math/vec3.h"
 #include "scene/ray_query.h"
 
@@ -66,8 +65,9 @@ public:
     }
 
     Affine transform;
+    // The caller's tag for the geometry, reported in every hit (ppm_hit::material); the scene
+    // does not interpret it (the renderer looks its material up by it).
     uint32_t material = 0;
-    Rgb emission; // area light radiance (quads and spheres only), black if none
 };
 
 // Pads a box so Embree's single-precision traversal keeps it (see EmbreeFrame). Every bounds

@@ -78,6 +78,7 @@ Scene::~Scene() {
 uint32_t Scene::add(std::unique_ptr<Geometry> geometry) {
     if (geometries_.size() >= PPM_INVALID_ID - 1) invalid_argument("too many geometries in a scene");
     geometries_.push_back(std::move(geometry));
+    prefers_mask_bit_.push_back(false);
     committed_ = false;
     return static_cast<uint32_t>(geometries_.size() - 1);
 }
@@ -87,6 +88,11 @@ Geometry &Scene::geometry(uint32_t geom_id) const {
         invalid_argument("geom_id " + std::to_string(geom_id) + " does not exist (the scene has " +
                          std::to_string(geometries_.size()) + " geometries)");
     return *geometries_[geom_id];
+}
+
+void Scene::prefer_mask_bit(uint32_t geom_id) {
+    geometry(geom_id); // checks the id
+    prefers_mask_bit_[geom_id] = true;
 }
 
 void Scene::set_tolerance(double relative) {
@@ -170,30 +176,31 @@ void Scene::commit() {
     committed_ = true;
 }
 
-// Embree masks have 32 bits. The geometries that rays can skip get one each, area lights first
-// (every shadow ray runs to one), then the other planar ones (rays leaving them); the rest keep
+// Embree masks have 32 bits. The geometries that rays can skip get one each, those that asked
+// first (prefer_mask_bit: the renderer's area lights, which every shadow ray runs to), then the
+// other planar ones (rays leaving them); the rest keep
 // Embree's full mask, so a ray's mask, all bits but those it skips, still reaches them. With
 // more such geometries than bits, the callbacks skip the others themselves (test_quad).
 void Scene::assign_mask_bits() {
     mask_bit_.assign(geometries_.size(), 0);
     leaving_mask_bit_.assign(geometries_.size(), 0);
     unsigned next_bit = 0;
-    for (const bool lights : {true, false})
+    for (const bool preferred : {true, false})
         for (size_t id = 0; id < geometries_.size() && next_bit < 32; ++id) {
-            const Geometry &g = *geometries_[id];
-            const bool wanted = lights ? !g.emission.is_black() : g.planar();
+            const bool wanted = preferred ? prefers_mask_bit_[id] : geometries_[id]->planar();
             if (wanted && mask_bit_[id] == 0) mask_bit_[id] = 1u << next_bit++;
         }
     for (size_t id = 0; id < geometries_.size(); ++id)
         if (geometries_[id]->planar()) leaving_mask_bit_[id] = mask_bit_[id];
 }
 
-uint32_t Scene::ray_mask(const ppm_ray &ray, const ppm_hit *leaving, uint32_t toward) const {
+uint32_t Scene::ray_mask(const ppm_ray &ray, const RayHints &hints) const {
     uint32_t skip = 0;
     // A ray starting behind its origin (tnear < 0) may meet the plane it left.
+    const ppm_hit *leaving = hints.leaving;
     if (leaving && ray.tnear >= 0 && leaving->geom_id < leaving_mask_bit_.size())
         skip |= leaving_mask_bit_[leaving->geom_id];
-    if (toward < mask_bit_.size()) skip |= mask_bit_[toward];
+    if (hints.skip_geometry < mask_bit_.size()) skip |= mask_bit_[hints.skip_geometry];
     return ~skip;
 }
 
@@ -203,9 +210,9 @@ void Scene::require_committed(const char *operation) const {
              std::string(operation) + ": the scene is not committed (call ppm_scene_commit after changes)");
 }
 
-bool Scene::start_query(const ppm_ray &ray, bool any_hit, const ppm_hit *leaving, uint32_t toward, RayQuery &query,
+bool Scene::start_query(const ppm_ray &ray, bool any_hit, const RayHints &hints, RayQuery &query,
                         RTCRay &embree_ray) const {
-    if (leaving) {
+    if (const ppm_hit *leaving = hints.leaving) {
         query.origin.geom_id = leaving->geom_id;
         query.origin.prim_id = leaving->prim_id;
         query.origin.u = leaving->u;
@@ -266,14 +273,14 @@ bool Scene::start_query(const ppm_ray &ray, bool any_hit, const ppm_hit *leaving
     embree_ray.tnear = 0.0f;
     embree_ray.tfar = query.embree_tfar(t1);
     embree_ray.time = 0.0f;
-    embree_ray.mask = ray_mask(ray, leaving, toward); // masks are enabled in Debian's Embree build
+    embree_ray.mask = ray_mask(ray, hints); // masks are enabled in Debian's Embree build
     embree_ray.id = kSingleRayId;
     embree_ray.flags = 0;
     return true;
 }
 
-bool Scene::start_intersect(const ppm_ray &ray, const ppm_hit *leaving, RayQuery &query, RTCRayHit &rayhit) const {
-    if (!start_query(ray, false, leaving, PPM_INVALID_ID, query, rayhit.ray)) return false;
+bool Scene::start_intersect(const ppm_ray &ray, const RayHints &hints, RayQuery &query, RTCRayHit &rayhit) const {
+    if (!start_query(ray, false, hints, query, rayhit.ray)) return false;
     rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
@@ -286,22 +293,22 @@ bool Scene::start_intersect(const ppm_ray &ray, const ppm_hit *leaving, RayQuery
     return true;
 }
 
-void Scene::intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv, const ppm_hit *leaving) const {
+void Scene::intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv, const RayHints &hints) const {
     RayQuery query;
     RTCRayHit rayhit;
-    if (!start_intersect(ray, leaving, query, rayhit)) return write_miss(hit);
+    if (!start_intersect(ray, hints, query, rayhit)) return write_miss(hit);
     if (!bvh_empty_) rtcIntersect1(rtc_scene_, &query.embree, &rayhit);
     finish_intersect(query, hit, surface_uv);
 }
 
-void Scene::intersect_stream(const ppm_ray *rays, const ppm_hit *const *leaving, size_t count, ppm_hit *hits,
+void Scene::intersect_stream(const ppm_ray *rays, const RayHints *hints, size_t count, ppm_hit *hits,
                              bool surface_uv) const {
     RayQuery queries[max_stream];
     RTCRayHit rayhits[max_stream];
     bool started[max_stream];
     count = std::min(count, max_stream);
     for (size_t i = 0; i < count; ++i) {
-        started[i] = start_intersect(rays[i], leaving ? leaving[i] : nullptr, queries[i], rayhits[i]);
+        started[i] = start_intersect(rays[i], hints ? hints[i] : RayHints{}, queries[i], rayhits[i]);
         if (bvh_empty_) continue;
         rayhits[i].ray.id = static_cast<unsigned>(i);
         // A ray that misses the scene's box is not set up: Embree skips rays with tnear > tfar.
@@ -345,10 +352,10 @@ void Scene::finish_intersect(const RayQuery &query, ppm_hit &hit, bool surface_u
     if (surface_uv) g.compute_uv(hit);
 }
 
-bool Scene::occluded(const ppm_ray &ray, const ppm_hit *leaving, uint32_t toward) const {
+bool Scene::occluded(const ppm_ray &ray, const RayHints &hints) const {
     RayQuery query;
     RTCRay embree_ray;
-    if (!start_query(ray, true, leaving, toward, query, embree_ray)) return false;
+    if (!start_query(ray, true, hints, query, embree_ray)) return false;
     if (direct_spheres_.occluded(query)) return true;
     if (bvh_empty_) return false;
     rtcOccluded1(rtc_scene_, &query.embree, &embree_ray);

@@ -6,6 +6,7 @@
 
 #include "core/context.h"
 #include "scene/geometry.h"
+#include "scene/ray_hints.h"
 #include "scene/sphere_set.h"
 
 #include <memory>
@@ -37,20 +38,22 @@ public:
 
     // Single-ray queries on a committed scene; the ray must be valid (see validate_ray).
     // Without surface_uv, u and v may be left 0 where they cost extra (Geometry::compute_uv).
-    // `leaving`, if given, is the hit the ray was spawned from (spawn_ray), which lets
-    // patches skip the root the ray starts on; it may be `hit` itself.
-    void intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv = true, const ppm_hit *leaving = nullptr) const;
-    // `toward`, if given, is the area light the ray runs to (a shadow ray that stops short of
-    // a point sampled on it, which is the light's first point along the ray): the light
-    // cannot block it, and Embree is told to skip it.
-    bool occluded(const ppm_ray &ray, const ppm_hit *leaving = nullptr, uint32_t toward = PPM_INVALID_ID) const;
+    // `hints` let the query skip work without changing its answer (ray_hints.h).
+    void intersect(const ppm_ray &ray, ppm_hit &hit, bool surface_uv = true, const RayHints &hints = {}) const;
+    bool occluded(const ppm_ray &ray, const RayHints &hints = {}) const;
 
     // Closest hits of up to max_stream rays at once, traced by Embree as a coherent stream
-    // (a camera's rays): hits[i] as intersect(rays[i], hits[i], surface_uv, leaving[i]) gives;
-    // `leaving` may be null (no ray leaves a known hit). Rays beyond max_stream are ignored.
+    // (a camera's rays): hits[i] as intersect(rays[i], hits[i], surface_uv, hints[i]) gives;
+    // `hints` may be null (no hints). Rays beyond max_stream are ignored.
     static constexpr size_t max_stream = 32;
-    void intersect_stream(const ppm_ray *rays, const ppm_hit *const *leaving, size_t count, ppm_hit *hits,
+    void intersect_stream(const ppm_ray *rays, const RayHints *hints, size_t count, ppm_hit *hits,
                           bool surface_uv = true) const;
+
+    // Asks that the geometry get an Embree mask bit of its own at commit, before the planar
+    // geometries do, because rays will often name it in RayHints::skip_geometry. Embree has 32
+    // bits; geometries beyond them are tested by their callbacks instead (same answers). Takes
+    // effect at the next commit and, changing no answer, does not undo the last one.
+    void prefer_mask_bit(uint32_t geom_id);
 
     // Batch queries: validate all rays, then run on the context's threads.
     void intersect(const ppm_ray *rays, size_t count, ppm_hit *hits) const;
@@ -61,16 +64,15 @@ public:
 private:
     // Sets up the query and, unless the BVH is empty, Embree's float ray and context; false if
     // the ray misses the scene's box.
-    bool start_query(const ppm_ray &ray, bool any_hit, const ppm_hit *leaving, uint32_t toward, RayQuery &query,
+    bool start_query(const ppm_ray &ray, bool any_hit, const RayHints &hints, RayQuery &query,
                      RTCRay &embree_ray) const;
-    // Embree's mask for a ray leaving `leaving` (may be null) towards light geometry `toward`
-    // (may be PPM_INVALID_ID): every geometry except those the ray cannot meet.
-    uint32_t ray_mask(const ppm_ray &ray, const ppm_hit *leaving, uint32_t toward) const;
+    // Embree's mask for a ray with these hints: every geometry except those the ray cannot meet.
+    uint32_t ray_mask(const ppm_ray &ray, const RayHints &hints) const;
     // Gives up to 32 geometries a mask bit of their own (assign_mask_bits in scene.cpp).
     void assign_mask_bits();
     // intersect() in two halves around Embree's traversal: the query (and the spheres kept
     // out of the BVH) before, the hit's description after.
-    bool start_intersect(const ppm_ray &ray, const ppm_hit *leaving, RayQuery &query, RTCRayHit &rayhit) const;
+    bool start_intersect(const ppm_ray &ray, const RayHints &hints, RayQuery &query, RTCRayHit &rayhit) const;
     void finish_intersect(const RayQuery &query, ppm_hit &hit, bool surface_uv) const;
     void require_committed(const char *operation) const;
 
@@ -79,17 +81,18 @@ private:
     double tolerance_ = 1e-9;
     int patch_presplit_ = EmbreeFrame{}.patch_presplit;
 
-    // Spheres whose box holds much of the scene's (Hachisuka's walls of radius 1e5): every ray
-    // overlaps them, so they stay out of the BVH, where their boxes would hide everything else
-    // from the culling, and every query tests them directly. A scene of a few spheres keeps
+    // Spheres whose box holds much of the scene's (a sphere used as a wall, a sky dome): every
+    // ray overlaps them, so they stay out of the BVH, where their boxes would widen the nodes
+    // above everything else and defeat the culling, and every query tests them directly. A scene of a few spheres keeps
     // them all here and its BVH empty.
     std::vector<uint32_t> direct_sphere_ids_;
     SphereSet direct_spheres_; // the same spheres, by index in direct_sphere_ids_
     bool bvh_empty_ = false;   // every geometry is a direct sphere: Embree is not called
 
     // Per geometry: its own Embree mask bit, or 0 if it has none (shares the full mask).
-    // Rays then skip, without any callback, the planar geometry they leave and the light they
-    // run to: the two quads every shadow ray in a Cornell box reached (own wall, light).
+    // Rays then skip, without any callback, the planar geometry they leave and the geometry
+    // their hints name: the two quads every shadow ray in a Cornell box reached (own wall, light).
+    std::vector<bool> prefers_mask_bit_; // prefer_mask_bit(), per geometry
     std::vector<uint32_t> mask_bit_;
     std::vector<uint32_t> leaving_mask_bit_; // the same for planar geometries, 0 for the rest
 
