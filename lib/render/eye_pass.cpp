@@ -234,24 +234,19 @@ void Renderer::init_pixel_slots() {
     // Each slot's state: pixel index, statistics, hit point, gather point, direct light and
     // the flux accumulator's cache line.
     constexpr std::uint64_t slot_bytes =
-        sizeof(std::uint32_t) + sizeof(PixelStatistics) + sizeof(HitPoint) + sizeof(GatherPoint) + sizeof(Rgb) + 64;
+        sizeof(std::uint32_t) + sizeof(PixelStatistics) + DensityEstimator::kSlotBytes + sizeof(Rgb);
     // Built aside and moved in, so that a failed allocation leaves the renderer as it was;
     // the largest arrays first, so that a film too large fails before any memory is filled.
     allocate_or_fail(film_description(), pixels * slot_bytes, [&] {
-        auto flux = std::make_unique<FluxAccumulator>(pixels, flux_scale());
-        std::vector<GatherPoint> gather(pixels);
+        estimator_.reset(pixels, flux_scale()); // the largest arrays first
         std::vector<PixelStatistics> stats(pixels, PixelStatistics{});
-        std::vector<HitPoint> hit_points(pixels, HitPoint{});
         std::vector<Rgb> pass_direct(pixels, Rgb());
         std::vector<std::uint32_t> slot_pixel(pixels);
         for (std::uint32_t p = 0; p < pixels; ++p) slot_pixel[p] = p;
         visible_.clear();
         slot_pixel_ = std::move(slot_pixel);
         stats_ = std::move(stats);
-        hit_points_ = std::move(hit_points);
-        gather_ = std::move(gather);
         pass_direct_ = std::move(pass_direct);
-        flux_ = std::move(flux);
     });
 }
 
@@ -275,7 +270,7 @@ std::optional<HitPointBounds> Renderer::eye_pass(std::uint32_t pass) {
                     for (std::uint32_t p = range.begin(); p < range.end(); p += kPathGroup) {
                         const std::uint32_t count = std::min(kPathGroup, range.end() - p);
                         trace_sppm_paths(p, count, pass, group);
-                        for (std::uint32_t k = 0; k < count; ++k) bounds.add(hit_points_[p + k]);
+                        for (std::uint32_t k = 0; k < count; ++k) bounds.add(estimator_.hit_point(p + k));
                     }
                     return bounds;
                 },
@@ -290,14 +285,13 @@ std::optional<HitPointBounds> Renderer::eye_pass(std::uint32_t pass) {
     // PPM: the first pass fixes the slots, at least one per pixel. A failed allocation leaves
     // no slots, so that the next pass starts over.
     constexpr std::uint64_t min_slot_bytes = sizeof(std::uint32_t) + sizeof(VisiblePoint) + sizeof(PixelStatistics) +
-                                             sizeof(HitPoint) + sizeof(GatherPoint) + 2 * sizeof(Rgb) + 64;
+                                             DensityEstimator::kSlotBytes + 2 * sizeof(Rgb);
     allocate_or_fail("the first PPM pass's hit points (at least this, one per pixel of " + film_description() + ")",
                      std::uint64_t(pixels) * min_slot_bytes, [&] {
                          try {
                              init_ppm_slots();
                          } catch (...) {
                              slot_pixel_.clear();
-                             flux_.reset();
                              throw;
                          }
                      });
@@ -311,7 +305,7 @@ void Renderer::init_ppm_slots() {
     // The room for one slot per pixel first: a film too large fails now, not after tracing it.
     const std::size_t pixels = static_cast<std::size_t>(width) * height;
     slot_pixel_.reserve(pixels), visible_.reserve(pixels), fixed_emitted_.reserve(pixels);
-    stats_.reserve(pixels), hit_points_.reserve(pixels), gather_.reserve(pixels), pass_direct_.reserve(pixels);
+    stats_.reserve(pixels), pass_direct_.reserve(pixels), estimator_.reserve(pixels);
     std::vector<SplitPaths> rows(height);
     std::vector<std::vector<std::uint32_t>> row_pixels(height);
     std::vector<std::vector<Rgb>> row_emitted(height);
@@ -347,10 +341,8 @@ void Renderer::init_ppm_slots() {
         fixed_emitted_.insert(fixed_emitted_.end(), row_emitted[y].begin(), row_emitted[y].end());
     }
     stats_.assign(slot_pixel_.size(), PixelStatistics{});
-    hit_points_.assign(slot_pixel_.size(), HitPoint{});
-    gather_.resize(slot_pixel_.size());
     pass_direct_.assign(slot_pixel_.size(), Rgb());
-    flux_ = std::make_unique<FluxAccumulator>(slot_pixel_.size(), flux_scale());
+    estimator_.reset(slot_pixel_.size(), flux_scale());
 }
 
 void Renderer::direct_pass(std::uint32_t pass) {

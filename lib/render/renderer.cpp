@@ -1,5 +1,6 @@
 // Pass orchestration, the end-of-pass statistics update and the image layers. The camera
-// paths are in eye_pass.cpp, the photon paths in photon_pass.cpp.
+// paths are in eye_pass.cpp, the photon paths in photon_tracer.cpp, the density estimate in
+// density_estimator.cpp.
 #include "render/renderer.h"
 
 #include "core/error.h"
@@ -61,9 +62,9 @@ void Renderer::render_pass() {
     const double eye_seconds = seconds_since(eye_start);
 
     const auto photon_start = std::chrono::steady_clock::now();
-    photon_pass(pass);
+    photon_tracer_.trace_pass(scene_->context(), render_scene_, settings_, pass, estimator_, cancel_requested_);
     if (cancelled()) {
-        for (std::size_t slot = 0; slot < slot_pixel_.size(); ++slot) flux_->take(slot); // discard
+        estimator_.discard_photons();
         if (ppm_mode && pass == 0) slot_pixel_.clear();
         check_cancel();
     }
@@ -74,47 +75,22 @@ void Renderer::render_pass() {
 }
 
 void Renderer::store_hit_point(std::uint32_t slot, const VisiblePoint &vp) {
-    if (!vp.valid) {
-        hit_points_[slot] = HitPoint{};
-        return;
-    }
-    hit_points_[slot] = {vp.p, stats_[slot].r2 > 0 ? stats_[slot].r2 : vp.initial_r2};
-    const double side = vp.wo_local.z >= 0 ? 1.0 : -1.0;
-    const Vec3 shading_normal = vp.frame.n * side;
-    GatherPoint &g = gather_[slot];
-    for (int a = 0; a < 3; ++a) {
-        g.normal[a] = static_cast<float>(vp.normal[a]);
-        g.shading_normal[a] = static_cast<float>(shading_normal[a]);
-    }
-    g.lobe = vp.bsdf.fixed_wo(vp.wo_local, vp.weight);
+    estimator_.store(slot, vp, stats_[slot].r2 > 0 ? stats_[slot].r2 : vp.initial_r2);
 }
 
 // The search over this pass's hit points, one per slot (absent ones are skipped). SPPM's camera
 // paths stored theirs; PPM's fixed visible points are stored here, with this pass's radii.
 void Renderer::build_search(const std::optional<HitPointBounds> &eye_bounds) {
-    using Range = tbb::blocked_range<std::size_t>;
-    const std::size_t slots = hit_points_.size();
-    HitPointBounds bounds;
-    scene_->context().run([&] {
-        if (settings_.mode == RenderSettings::Mode::Ppm)
-            tbb::parallel_for(Range(0, slots, 4096), [&](const Range &range) {
+    if (settings_.mode == RenderSettings::Mode::Ppm) {
+        using Range = tbb::blocked_range<std::size_t>;
+        scene_->context().run([&] {
+            tbb::parallel_for(Range(0, visible_.size(), 4096), [&](const Range &range) {
                 for (std::size_t slot = range.begin(); slot < range.end(); ++slot)
                     store_hit_point(static_cast<std::uint32_t>(slot), visible_[slot]);
             });
-        bounds = eye_bounds ? *eye_bounds : measure_hit_points(hit_points_.data(), slots);
-    });
-    present_hit_points_ = bounds.present;
-    gather_bounds_ = bounds.box;
-    const double pad = std::sqrt(bounds.max_r2) * (1 + 1e-9) + 1e-12 * gather_bounds_.diagonal();
-    gather_bounds_.lower -= Vec3{pad, pad, pad};
-    gather_bounds_.upper += Vec3{pad, pad, pad};
-    // In the context's arena: the structures build on the context's workers.
-    scene_->context().run([&] {
-        if (settings_.search == RenderSettings::Search::Grid)
-            grid_.build(hit_points_.data(), hit_points_.size(), bounds);
-        else
-            tree_.build(hit_points_.data(), hit_points_.size());
-    });
+        });
+    }
+    estimator_.build(scene_->context(), settings_.search, eye_bounds);
 }
 
 void Renderer::commit_pass() {
@@ -124,9 +100,11 @@ void Renderer::commit_pass() {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, slot_pixel_.size(), 4096), [&](const auto &range) {
             for (std::size_t slot = range.begin(); slot < range.end(); ++slot) {
                 PixelStatistics &s = stats_[slot];
-                const PassPhotons photons = flux_->take(slot);
+                const std::uint32_t index = static_cast<std::uint32_t>(slot);
+                const PassPhotons photons = estimator_.take(index);
                 // The first pass's radius: the hit point's (the initial radius while s.r2 == 0).
-                if (hit_points_[slot].present() && s.r2 == 0) s.r2 = hit_points_[slot].r2;
+                const HitPoint &hit_point = estimator_.hit_point(index);
+                if (hit_point.present() && s.r2 == 0) s.r2 = hit_point.r2;
                 progressive_update(s, photons, alpha);
                 s.direct += pass_direct_[slot];
             }

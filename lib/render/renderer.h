@@ -23,17 +23,16 @@
 #pragma once
 
 #include "core/ref_counted.h"
-#include "photon/hash_grid.h"
 #include "photon/hit_point.h"
-#include "photon/hit_point_tree.h"
 #include "photon/random.h"
 #include "photon/sppm_statistics.h"
 #include "render/camera.h"
+#include "render/density_estimator.h"
+#include "render/photon_tracer.h"
 #include "render/render_scene.h"
 #include "render/render_settings.h"
+#include "render/visible_point.h"
 #include "scene/scene.h"
-
-#include <tbb/enumerable_thread_specific.h>
 
 #include <atomic>
 #include <cstdint>
@@ -44,39 +43,6 @@
 #include <vector>
 
 namespace ppm {
-
-// What a camera path left at one slot (a pixel in SPPM, a split path in PPM) in one pass.
-struct VisiblePoint {
-    bool valid = false;
-    Vec3 p;
-    Vec3 normal; // geometric normal on the camera's side: photons from behind are rejected
-    double p_error = 0;
-    Frame frame; // shading frame
-    Vec3 wo_local;
-    Bsdf bsdf;  // black until a point is stored
-    Rgb weight; // camera path throughput up to this point
-    double initial_r2 = 0;
-};
-
-// What a photon landing within a hit point's radius needs of its visible point, packed into
-// one cache line (a VisiblePoint is about 250 bytes, and the photon pass reads these at
-// random). The normals only decide sides and cosines, so single precision does.
-struct alignas(64) GatherPoint {
-    float normal[3];         // geometric, on the camera's side: photons from behind are rejected
-    float shading_normal[3]; // on the side of wo: a photon's cos(wi) is -dot(it, direction)
-    FixedWoLobe lobe;        // the camera path's weight times the BSDF at this wo
-
-    static double dot(const float n[3], const Vec3 &d) { return n[0] * d.x + n[1] * d.y + n[2] * d.z; }
-};
-static_assert(sizeof(GatherPoint) == 64, "a gather point fills one cache line");
-
-// A photon arriving at a surface where it may be gathered, buffered so that a batch of them
-// can be gathered in spatial order (hit points then stay in cache).
-struct PhotonHit {
-    Vec3 position;
-    Vec3 direction; // of travel, unit
-    Rgb flux;
-};
 
 class Renderer : public RefCounted {
 public:
@@ -131,9 +97,9 @@ private:
     void init_ppm_slots();                // PPM: the first eye pass's split paths, traced in parallel
     std::string film_description() const; // "the film of W x H pixels", for messages
     double flux_scale() const;            // for the FluxAccumulator
-    void photon_pass(std::uint32_t pass);
     void direct_pass(std::uint32_t pass); // PPM: direct light again at the fixed points
-    // The slot's hit point and gather data for this pass (absent unless vp.valid).
+    // The slot's hit point and gather data for this pass (absent unless vp.valid), with the
+    // slot's radius (the initial one before its first pass).
     void store_hit_point(std::uint32_t slot, const VisiblePoint &vp);
     void build_search(const std::optional<HitPointBounds> &eye_bounds);
     void commit_pass();
@@ -158,10 +124,6 @@ private:
     // Throws PARSE, naming the slot and field, for statistics no render could have made.
     void check_statistics(const std::string &path, const std::vector<PixelStatistics> &stats, std::uint64_t passes,
                           std::uint64_t emitted) const;
-    // Photon paths (photon_pass.cpp).
-    void trace_photon(std::uint64_t index, std::uint32_t pass, std::vector<PhotonHit> &hits) const;
-    void gather_sorted();
-    void deposit(const PhotonHit &photon);
     // What a checkpoint records to recognise its render.
     std::uint64_t camera_hash() const;
     std::uint64_t scene_hash() const;
@@ -177,22 +139,12 @@ private:
     std::vector<std::uint32_t> slot_pixel_;
     std::vector<PixelStatistics> stats_;
     // This pass: direct light per slot, and the visible points (PPM only: fixed by the first
-    // pass; SPPM stores its points straight into hit_points_ and gather_).
+    // pass; SPPM stores its points straight into the estimator).
     std::vector<VisiblePoint> visible_;
     std::vector<Rgb> pass_direct_;
-    std::vector<Rgb> fixed_emitted_;   // PPM: emission seen along each split path (constant)
-    std::vector<HitPoint> hit_points_; // per slot: position and radius (absent: no point) ...
-    std::vector<GatherPoint> gather_;  // ... and what deposit() needs of it
-    std::size_t present_hit_points_ = 0;
-    HitPointGrid grid_;
-    HitPointTree tree_;
-    std::unique_ptr<FluxAccumulator> flux_;
-    Box3 gather_bounds_; // hit points' bounds grown by the largest radius: photons outside are not kept
-    // Photon batches: per-thread buffers of the photons that landed, then one sorted list.
-    tbb::enumerable_thread_specific<std::vector<PhotonHit>> thread_hits_;
-    std::vector<std::vector<PhotonHit> *> batch_parts_; // the non-empty thread buffers ...
-    std::vector<std::size_t> batch_part_starts_;        // ... and the index of each one's first photon
-    std::vector<std::uint64_t> batch_order_;            // Morton key << index bits | index
+    std::vector<Rgb> fixed_emitted_; // PPM: emission seen along each split path (constant)
+    DensityEstimator estimator_;     // this pass's hit points and the photons they gather
+    PhotonTracer photon_tracer_;
 
     std::atomic<std::uint64_t> passes_{0};
     std::atomic<std::uint64_t> photons_emitted_{0};

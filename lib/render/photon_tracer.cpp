@@ -1,9 +1,6 @@
-// Photon paths: emitted by lights in proportion to power, scattered with the adjoint BSDFs
-// and Russian roulette. Where a photon may be gathered it is buffered; each batch of photons
-// is then sorted along a Morton curve and gathered in that order, so consecutive searches
-// touch the same hit points (gathering in path order missed the cache at nearly every
-// photon). Batches keep the buffers' size independent of photons_per_pass.
-#include "render/renderer.h"
+#include "render/photon_tracer.h"
+
+#include "photon/random.h"
 
 #include "scene/scene.h"
 #include "scene/spawn.h"
@@ -46,31 +43,14 @@ std::uint64_t morton_key(const Vec3 &p, const Box3 &box, int bits) {
     return key;
 }
 
-bool inside(const Box3 &box, const Vec3 &p) {
-    return p.x >= box.lower.x && p.x <= box.upper.x && p.y >= box.lower.y && p.y <= box.upper.y && p.z >= box.lower.z &&
-           p.z <= box.upper.z;
-}
-
 } // namespace
 
-void Renderer::deposit(const PhotonHit &photon) {
-    const auto visit = [&](std::uint32_t index, double) {
-        const GatherPoint &g = gather_[index];
-        // A photon arriving from behind the visible point's surface (the far side of a thin
-        // wall, the inside of a closed object) does not light it.
-        if (GatherPoint::dot(g.normal, photon.direction) >= 0) return;
-        flux_->add(index, photon.flux * g.lobe.at(-GatherPoint::dot(g.shading_normal, photon.direction)));
-    };
-    if (settings_.search == RenderSettings::Search::Grid)
-        grid_.query(photon.position, visit);
-    else
-        tree_.query(photon.position, visit);
-}
-
-void Renderer::trace_photon(std::uint64_t index, std::uint32_t pass, std::vector<PhotonHit> &hits) const {
-    CounterRng rng(settings_.seed, kPhotonStream, pass, index);
+void PhotonTracer::trace_photon(const RenderScene &scene, const RenderSettings &settings,
+                                const DensityEstimator &estimator, std::uint64_t index, std::uint32_t pass,
+                                std::vector<PhotonHit> &hits) {
+    CounterRng rng(settings.seed, kPhotonStream, pass, index);
     double light_probability = 0;
-    const Light &light = render_scene_.lights()[render_scene_.pick_light(rng.uniform(), &light_probability)];
+    const Light &light = scene.lights()[scene.pick_light(rng.uniform(), &light_probability)];
     const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform(), u4 = rng.uniform();
     const EmittedPhoton emitted = light.emit(u1, u2, u3, u4);
     Rgb flux = emitted.flux / light_probability;
@@ -82,11 +62,11 @@ void Renderer::trace_photon(std::uint64_t index, std::uint32_t pass, std::vector
     ray.tfar = INFINITY;
     SurfacePoint sp;
     const ppm_hit *leaving = nullptr; // photons start at a light, not at a hit
-    for (int depth = 0; depth < settings_.max_depth; ++depth) {
-        if (!render_scene_.intersect(ray, sp, leaving)) return;
+    for (int depth = 0; depth < settings.max_depth; ++depth) {
+        if (!scene.intersect(ray, sp, leaving)) return;
         const Vec3 direction = Vec3::from(ray.dir);
         // Depth 0 is direct light, which the eye pass estimates by itself (unless told not to).
-        if ((depth > 0 || !settings_.direct_lighting) && sp.bsdf.has_non_specular() && inside(gather_bounds_, sp.p))
+        if ((depth > 0 || !settings.direct_lighting) && sp.bsdf.has_non_specular() && estimator.may_gather(sp.p))
             hits.push_back({sp.p, direction, flux});
         const double u_lobe = rng.uniform(), v1 = rng.uniform(), v2 = rng.uniform();
         const BsdfSample s = sp.bsdf.sample(sp.wo_local, u_lobe, v1, v2, TransportMode::Importance);
@@ -102,7 +82,7 @@ void Renderer::trace_photon(std::uint64_t index, std::uint32_t pass, std::vector
     }
 }
 
-void Renderer::gather_sorted() {
+void PhotonTracer::gather_sorted(DensityEstimator &estimator, const std::atomic<bool> &cancel) {
     // The photons stay in the threads' buffers and an index runs through them in turn. Kept
     // because it pays: one copied list would raise ppm-bench render's peak memory by about
     // 20 % at 1M photons per pass (docs/bench/code-history.md).
@@ -133,36 +113,39 @@ void Renderer::gather_sorted() {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, hits.size(), 4096), [&](const auto &range) {
             for (std::size_t i = range.begin(); i < range.end(); ++i)
                 batch_order_[first + i] =
-                    morton_key(hits[i].position, gather_bounds_, axis_bits) << index_bits | (first + i);
+                    morton_key(hits[i].position, estimator.gather_bounds(), axis_bits) << index_bits | (first + i);
         });
     }
     tbb::parallel_sort(batch_order_.begin(), batch_order_.end());
     const std::uint64_t index_mask = (std::uint64_t(1) << index_bits) - 1;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, batch_order_.size(), 1024), [&](const auto &range) {
-        if (cancelled()) return;
+        if (cancel.load(std::memory_order_relaxed)) return;
         for (std::size_t i = range.begin(); i < range.end(); ++i) {
             // The photons lie in path order, so their records are read at random: fetch
             // a few ahead, or each search waits for its photon.
             if (i + kPrefetchAhead < range.end())
                 __builtin_prefetch(&photon_at(batch_order_[i + kPrefetchAhead] & index_mask));
-            deposit(photon_at(batch_order_[i] & index_mask));
+            estimator.deposit(photon_at(batch_order_[i] & index_mask));
         }
     });
     for (std::vector<PhotonHit> *hits : batch_parts_) hits->clear();
 }
 
-void Renderer::photon_pass(std::uint32_t pass) {
-    if (render_scene_.lights().empty() || render_scene_.total_power().is_black() || present_hit_points_ == 0) return;
-    const std::uint64_t count = settings_.photons_per_pass;
-    scene_->context().run([&] {
+void PhotonTracer::trace_pass(Context &context, const RenderScene &scene, const RenderSettings &settings,
+                              std::uint32_t pass, DensityEstimator &estimator, const std::atomic<bool> &cancel) {
+    if (scene.lights().empty() || scene.total_power().is_black() || estimator.present() == 0) return;
+    const auto cancelled = [&] { return cancel.load(std::memory_order_relaxed); };
+    const std::uint64_t count = settings.photons_per_pass;
+    context.run([&] {
         for (std::uint64_t begin = 0; begin < count && !cancelled(); begin += kBatchPhotons) {
             const std::uint64_t end = std::min(count, begin + kBatchPhotons);
             tbb::parallel_for(tbb::blocked_range<std::uint64_t>(begin, end, 1024), [&](const auto &range) {
                 if (cancelled()) return;
                 std::vector<PhotonHit> &hits = thread_hits_.local();
-                for (std::uint64_t i = range.begin(); i < range.end(); ++i) trace_photon(i, pass, hits);
+                for (std::uint64_t i = range.begin(); i < range.end(); ++i)
+                    trace_photon(scene, settings, estimator, i, pass, hits);
             });
-            gather_sorted();
+            gather_sorted(estimator, cancel);
         }
     });
 }
