@@ -179,28 +179,25 @@ std::uint64_t Renderer::scene_hash() const {
 
 void Renderer::save_checkpoint(const std::string &path) const {
     Writer w;
-    {
-        std::lock_guard<std::mutex> lock(stats_mutex_);
-        const std::uint64_t passes = passes_.load();
-        // Before the first pass completes, the slots may be changing (PPM's first eye pass):
-        // there is nothing to save but the identity.
-        const std::uint64_t slots = passes == 0 ? 0 : slot_pixel_.size();
+    // The state after the last completed pass (no slots before the first: only the identity).
+    film_.with_state([&](const std::vector<std::uint32_t> &slot_pixel, const std::vector<PixelStatistics> &stats,
+                         std::uint64_t passes, std::uint64_t emitted) {
+        const std::uint64_t slots = slot_pixel.size();
         w.put_bytes(kMagic, sizeof kMagic);
         w.put(kVersion), w.put(kByteOrderMark);
         w.put(static_cast<std::uint32_t>(width())), w.put(static_cast<std::uint32_t>(height()));
         w.put(static_cast<std::uint32_t>(settings_.mode)), w.put(static_cast<std::uint32_t>(settings_.direct_lighting));
         w.put(settings_.seed), w.put(settings_.initial_radius), w.put(settings_.initial_radius_pixels);
         w.put(camera_hash()), w.put(scene_hash());
-        w.put(passes), w.put(photons_emitted_.load()), w.put(slots);
+        w.put(passes), w.put(emitted), w.put(slots);
         if (slots > 0) {
-            w.put_bytes(slot_pixel_.data(), slots * sizeof(std::uint32_t));
-            for (std::size_t i = 0; i < slots; ++i) {
-                const PixelStatistics &s = stats_[i];
+            w.put_bytes(slot_pixel.data(), slots * sizeof(std::uint32_t));
+            for (const PixelStatistics &s : stats) {
                 const double values[8] = {s.n, s.r2, s.tau.r, s.tau.g, s.tau.b, s.direct.r, s.direct.g, s.direct.b};
                 w.put_bytes(values, sizeof values);
             }
         }
-    }
+    });
     Fnv1a h;
     h.add(w.buffer().data(), w.buffer().size());
     w.put(h.value());
@@ -278,24 +275,17 @@ void Renderer::load_checkpoint(const std::string &path) {
 
     // Rebuild the slots as the first pass made them (SPPM: one per pixel; PPM: the first eye
     // pass's split paths, traced again), then take the statistics.
-    slot_pixel_.clear();
-    if (settings_.mode == RenderSettings::Mode::Sppm) {
-        init_pixel_slots();
-    } else {
-        eye_pass(0);
-        if (cancelled()) {
-            slot_pixel_.clear();
-            fail(PPM_ERROR_CANCELLED, "loading the checkpoint was cancelled");
-        }
+    film_.clear_slots();
+    integrator().make_slots(pass_inputs(), film_, estimator_);
+    if (cancelled()) {
+        film_.clear_slots();
+        fail(PPM_ERROR_CANCELLED, "loading the checkpoint was cancelled");
     }
-    if (slot_pixel_ != pixels) {
-        slot_pixel_.clear();
+    if (film_.slot_pixels() != pixels) {
+        film_.clear_slots();
         invalid_argument(path + ": checkpoint of another render: its hit points differ from this renderer's");
     }
-    std::lock_guard<std::mutex> lock(stats_mutex_);
-    stats_ = std::move(stats);
-    photons_emitted_.store(emitted);
-    passes_.store(passes);
+    film_.restore(std::move(stats), passes, emitted);
 }
 
 } // namespace ppm

@@ -1,16 +1,11 @@
-// Pass orchestration, the end-of-pass statistics update and the image layers. The camera
-// paths are in eye_pass.cpp, the photon paths in photon_tracer.cpp, the density estimate in
-// density_estimator.cpp.
+// Pass orchestration: the integrator's eye pass, the search build, the photon pass and the
+// film's statistics update, with cancellation and timing.
 #include "render/renderer.h"
 
 #include "core/error.h"
+#include "render/camera_paths.h"
 #include "scene/scene.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
-
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -26,7 +21,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 Renderer::Renderer(Scene &scene, const SceneShading &shading, const CameraSettings &camera)
     : scene_(&scene), render_scene_(scene, shading), camera_settings_(camera), camera_(camera),
-      material_count_(shading.materials().size()), point_light_count_(shading.lights().size()) {
+      material_count_(shading.materials().size()), point_light_count_(shading.lights().size()),
+      film_(camera_.width(), camera_.height()) {
     const std::uint64_t pixels = static_cast<std::uint64_t>(camera_.width()) * camera_.height();
     if (pixels > (std::uint64_t(1) << 28))
         invalid_argument("image of " + std::to_string(camera_.width()) + " x " + std::to_string(camera_.height()) +
@@ -35,6 +31,27 @@ Renderer::Renderer(Scene &scene, const SceneShading &shading, const CameraSettin
 }
 
 Renderer::~Renderer() { scene_->release(); }
+
+PassInputs Renderer::pass_inputs() const {
+    return PassInputs{scene_->context(), render_scene_, camera_, settings_, cancel_requested_, flux_scale()};
+}
+
+Integrator &Renderer::integrator() {
+    if (!integrator_ || integrator_mode_ != settings_.mode) {
+        integrator_ = make_integrator(settings_.mode);
+        integrator_mode_ = settings_.mode;
+    }
+    return *integrator_;
+}
+
+double Renderer::flux_scale() const {
+    // Without any light (or only black ones) no photon is traced and the image is black; the
+    // accumulator still needs a valid scale.
+    const double power = render_scene_.total_power().max();
+    return power > 0 ? power : 1.0;
+}
+
+double Renderer::footprint_r2(double path_length) const { return ppm::footprint_r2(pass_inputs(), path_length); }
 
 void Renderer::render_pass() {
     std::unique_lock<std::mutex> one_pass(pass_mutex_, std::try_to_lock);
@@ -45,19 +62,19 @@ void Renderer::render_pass() {
         if (cancel_requested_.exchange(false)) fail(PPM_ERROR_CANCELLED, "render pass cancelled");
     };
     check_cancel();
-    const std::uint32_t pass = static_cast<std::uint32_t>(passes_.load());
-    const bool ppm_mode = settings_.mode == RenderSettings::Mode::Ppm;
+    const std::uint32_t pass = static_cast<std::uint32_t>(film_.passes());
+    const PassInputs in = pass_inputs();
+    // A cancelled first pass leaves no slots: they may be incomplete, and the next pass makes them again.
+    const auto discard = [&] {
+        if (pass == 0) film_.clear_slots();
+        check_cancel();
+    };
 
     const auto eye_start = std::chrono::steady_clock::now();
-    std::optional<HitPointBounds> eye_bounds;
-    if (!ppm_mode || slot_pixel_.empty()) eye_bounds = eye_pass(pass);
-    if (ppm_mode) direct_pass(pass);
-    if (cancelled()) {
-        if (ppm_mode && pass == 0) slot_pixel_.clear(); // the fixed points are redone next time
-        check_cancel();
-    }
+    const std::optional<HitPointBounds> eye_bounds = integrator().eye_pass(in, pass, film_, estimator_);
+    if (cancelled()) discard();
     const auto build_start = std::chrono::steady_clock::now();
-    build_search(eye_bounds);
+    estimator_.build(scene_->context(), settings_.search, eye_bounds);
     const double build_seconds = seconds_since(build_start);
     const double eye_seconds = seconds_since(eye_start);
 
@@ -65,85 +82,12 @@ void Renderer::render_pass() {
     photon_tracer_.trace_pass(scene_->context(), render_scene_, settings_, pass, estimator_, cancel_requested_);
     if (cancelled()) {
         estimator_.discard_photons();
-        if (ppm_mode && pass == 0) slot_pixel_.clear();
-        check_cancel();
+        discard();
     }
     last_photon_seconds_ = seconds_since(photon_start);
     last_eye_seconds_ = eye_seconds;
     last_search_build_seconds_ = build_seconds;
-    commit_pass();
-}
-
-void Renderer::store_hit_point(std::uint32_t slot, const VisiblePoint &vp) {
-    estimator_.store(slot, vp, stats_[slot].r2 > 0 ? stats_[slot].r2 : vp.initial_r2);
-}
-
-// The search over this pass's hit points, one per slot (absent ones are skipped). SPPM's camera
-// paths stored theirs; PPM's fixed visible points are stored here, with this pass's radii.
-void Renderer::build_search(const std::optional<HitPointBounds> &eye_bounds) {
-    if (settings_.mode == RenderSettings::Mode::Ppm) {
-        using Range = tbb::blocked_range<std::size_t>;
-        scene_->context().run([&] {
-            tbb::parallel_for(Range(0, visible_.size(), 4096), [&](const Range &range) {
-                for (std::size_t slot = range.begin(); slot < range.end(); ++slot)
-                    store_hit_point(static_cast<std::uint32_t>(slot), visible_[slot]);
-            });
-        });
-    }
-    estimator_.build(scene_->context(), settings_.search, eye_bounds);
-}
-
-void Renderer::commit_pass() {
-    std::lock_guard<std::mutex> lock(stats_mutex_);
-    const double alpha = settings_.alpha;
-    scene_->context().run([&] {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, slot_pixel_.size(), 4096), [&](const auto &range) {
-            for (std::size_t slot = range.begin(); slot < range.end(); ++slot) {
-                PixelStatistics &s = stats_[slot];
-                const std::uint32_t index = static_cast<std::uint32_t>(slot);
-                const PassPhotons photons = estimator_.take(index);
-                // The first pass's radius: the hit point's (the initial radius while s.r2 == 0).
-                const HitPoint &hit_point = estimator_.hit_point(index);
-                if (hit_point.present() && s.r2 == 0) s.r2 = hit_point.r2;
-                progressive_update(s, photons, alpha);
-                s.direct += pass_direct_[slot];
-            }
-        });
-    });
-    photons_emitted_ += settings_.photons_per_pass;
-    passes_ += 1;
-}
-
-size_t Renderer::layer_channels(const std::string &name) {
-    if (name == "radiance") return 3;
-    if (name == "radius" || name == "photons") return 1;
-    invalid_argument("unknown image layer '" + name + "' (layers: radiance, radius, photons)");
-}
-
-void Renderer::read_layer(const std::string &name, float *out) const {
-    const size_t channels = layer_channels(name);
-    const size_t pixels = static_cast<size_t>(width()) * height();
-    std::fill(out, out + pixels * channels, 0.0f);
-    std::lock_guard<std::mutex> lock(stats_mutex_);
-    const std::uint64_t emitted = photons_emitted_.load(), passes = passes_.load();
-    // Until a pass completes, the running pass makes the slots and statistics without this
-    // lock (init_pixel_slots, PPM's first eye pass): there is nothing to read yet, and
-    // touching them would race. passes_ grows under the lock once they are final.
-    if (passes == 0) return;
-    for (size_t slot = 0; slot < slot_pixel_.size(); ++slot) {
-        const PixelStatistics &s = stats_[slot];
-        float *pixel = out + static_cast<size_t>(slot_pixel_[slot]) * channels;
-        if (name == "radiance") {
-            const Rgb l = radiance_estimate(s, emitted, passes);
-            pixel[0] += static_cast<float>(l.r);
-            pixel[1] += static_cast<float>(l.g);
-            pixel[2] += static_cast<float>(l.b);
-        } else if (name == "radius") {
-            pixel[0] = std::max(pixel[0], static_cast<float>(std::sqrt(s.r2)));
-        } else {
-            pixel[0] += static_cast<float>(s.n);
-        }
-    }
+    film_.commit_pass(scene_->context(), estimator_, settings_.alpha, settings_.photons_per_pass);
 }
 
 } // namespace ppm

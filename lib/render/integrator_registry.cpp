@@ -1,0 +1,33 @@
+// The integrator of every mode. The mode's name and number (what checkpoints record) live in
+// render_settings.
+#include "render/integrator.h"
+
+#include "core/error.h"
+#include "render/ppm_integrator.h"
+#include "render/sppm_integrator.h"
+
+namespace ppm {
+
+namespace {
+
+struct Registration {
+    RenderSettings::Mode mode;
+    std::unique_ptr<Integrator> (*make)();
+};
+
+template <class T> std::unique_ptr<Integrator> make() { return std::make_unique<T>(); }
+
+constexpr Registration kIntegrators[] = {
+    {RenderSettings::Mode::Sppm, make<SppmIntegrator>},
+    {RenderSettings::Mode::Ppm, make<PpmIntegrator>},
+};
+
+} // namespace
+
+std::unique_ptr<Integrator> make_integrator(RenderSettings::Mode mode) {
+    for (const Registration &r : kIntegrators)
+        if (r.mode == mode) return r.make();
+    fail(PPM_ERROR_INVALID_ARGUMENT, "no integrator for mode " + std::to_string(static_cast<int>(mode)));
+}
+
+} // namespace ppm
