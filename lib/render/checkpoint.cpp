@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/text_file.h"
+#include "render/camera_paths.h"
 
 #include <algorithm>
 #include <cmath>
@@ -118,7 +119,7 @@ void Renderer::check_statistics(const std::string &path, const std::vector<Pixel
         std::max(std::abs(box.lower.y - camera_settings_.origin.y), std::abs(box.upper.y - camera_settings_.origin.y)),
         std::max(std::abs(box.lower.z - camera_settings_.origin.z), std::abs(box.upper.z - camera_settings_.origin.z))};
     const double longest_path = length(far_corner) + kMaxDepthLimit * length(box.upper - box.lower);
-    const double largest_r2 = footprint_r2(longest_path);
+    const double largest_r2 = footprint_r2(pass_inputs(), longest_path);
     const double most_photons = static_cast<double>(emitted) * kMaxDepthLimit;
     const auto bad = [&](std::size_t slot, const char *field, double value, const char *rule) {
         corrupt(path,

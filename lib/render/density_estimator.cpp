@@ -18,11 +18,6 @@ void DensityEstimator::reset(std::size_t slots, double flux_scale) {
     present_ = 0;
 }
 
-void DensityEstimator::reserve(std::size_t slots) {
-    hit_points_.reserve(slots);
-    gather_.reserve(slots);
-}
-
 void DensityEstimator::store(std::uint32_t slot, const VisiblePoint &vp, double r2) {
     if (!vp.valid) {
         hit_points_[slot] = HitPoint{};

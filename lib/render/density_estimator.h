@@ -28,7 +28,6 @@ public:
     // `slots` absent hit points and zero flux, summed in quanta of flux_scale (FluxAccumulator).
     // Built aside and swapped in: a failed allocation leaves the estimator as it was.
     void reset(std::size_t slots, double flux_scale);
-    void reserve(std::size_t slots);
     std::size_t slots() const { return hit_points_.size(); }
 
     // The slot's hit point for this pass with squared radius r2 (absent unless vp.valid).

@@ -23,10 +23,6 @@ void Film::set_slots(std::vector<std::uint32_t> slot_pixel) {
     pass_direct_ = std::move(pass_direct);
 }
 
-void Film::reserve(std::size_t slots) {
-    slot_pixel_.reserve(slots), stats_.reserve(slots), pass_direct_.reserve(slots);
-}
-
 void Film::commit_pass(Context &context, DensityEstimator &estimator, double alpha, std::uint64_t photons) {
     std::lock_guard<std::mutex> lock(mutex_);
     context.run([&] {

@@ -34,7 +34,6 @@ public:
     // The slots, one per entry of slot_pixel (the pixel each belongs to), with zero statistics.
     // Not while a pass runs or after one has completed (the statistics would be lost).
     void set_slots(std::vector<std::uint32_t> slot_pixel);
-    void reserve(std::size_t slots);
     void clear_slots() { slot_pixel_.clear(); } // made again by the next pass
     bool has_slots() const { return !slot_pixel_.empty(); }
     std::size_t slot_count() const { return slot_pixel_.size(); }

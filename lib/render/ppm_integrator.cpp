@@ -73,9 +73,10 @@ template <class Emit> void PpmIntegrator::trace_split_path(const PassInputs &in,
 
 void PpmIntegrator::trace_fixed_points(const PassInputs &in, Film &film, DensityEstimator &estimator) {
     const int width = in.camera.width(), height = in.camera.height();
-    // The room for one slot per pixel first: a film too large fails now, not after tracing it.
+    // The room for one slot per pixel first, in the largest per-slot arrays (a visible point is
+    // about 250 bytes): a film too large fails now, not after tracing it. The film's and the
+    // estimator's arrays are made once the slot count is known.
     const std::size_t pixels = static_cast<std::size_t>(width) * height;
-    film.reserve(pixels), estimator.reserve(pixels);
     visible_.reserve(pixels), fixed_emitted_.reserve(pixels);
     std::vector<SplitPaths> rows(height);
     std::vector<std::vector<std::uint32_t>> row_pixels(height);

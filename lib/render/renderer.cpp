@@ -3,7 +3,6 @@
 #include "render/renderer.h"
 
 #include "core/error.h"
-#include "render/camera_paths.h"
 #include "scene/scene.h"
 
 #include <chrono>
@@ -50,8 +49,6 @@ double Renderer::flux_scale() const {
     const double power = render_scene_.total_power().max();
     return power > 0 ? power : 1.0;
 }
-
-double Renderer::footprint_r2(double path_length) const { return ppm::footprint_r2(pass_inputs(), path_length); }
 
 void Renderer::render_pass() {
     std::unique_lock<std::mutex> one_pass(pass_mutex_, std::try_to_lock);

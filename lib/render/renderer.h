@@ -90,7 +90,6 @@ private:
     Integrator &integrator();
     double flux_scale() const; // for the FluxAccumulator
     bool cancelled() const { return cancel_requested_.load(std::memory_order_relaxed); }
-    double footprint_r2(double path_length) const;
     // Throws PARSE, naming the slot and field, for statistics no render could have made.
     void check_statistics(const std::string &path, const std::vector<PixelStatistics> &stats, std::uint64_t passes,
                           std::uint64_t emitted) const;
