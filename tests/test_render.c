@@ -131,6 +131,8 @@ static void furnace_sppm(void **state) { check_furnace(state, "sppm", 1, 0); }
 static void furnace_sppm_photons_only(void **state) { check_furnace(state, "sppm", 0, 0); }
 static void furnace_with_glass_mirror_and_coat(void **state) { check_furnace(state, "sppm", 1, 1); }
 static void furnace_with_objects_ppm_mode(void **state) { check_furnace(state, "ppm", 1, 1); }
+static void furnace_with_objects_pppm_mode(void **state) { check_furnace(state, "pppm", 1, 1); }
+static void furnace_pppm_photons_only(void **state) { check_furnace(state, "pppm", 0, 0); }
 
 /* Plane z = 0 (4 x 4, diffuse rho), point light at height h over the origin, camera above. */
 static const double kRho = 0.8, kHeight = 1.0, kCameraHeight = 3.0, kFov = 60;
@@ -214,8 +216,9 @@ static void point_light_on_plane_by_shadow_rays(void **state) {
     ppm_renderer_release(r);
 }
 
-static void point_light_on_plane_by_photons_converges(void **state) {
+static void check_point_light_by_photons_converges(void **state, const char *mode) {
     ppm_renderer r = point_light_over_plane(*state);
+    assert_ppm_ok(ppm_renderer_set_string(r, "mode", mode));
     assert_ppm_ok(ppm_renderer_set_int(r, "direct_lighting", 0));
     assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", 20000));
     assert_ppm_ok(ppm_renderer_set_double(r, "initial_radius_pixels", 2));
@@ -226,7 +229,8 @@ static void point_light_on_plane_by_photons_converges(void **state) {
         image im = render(r, passes[k] - done);
         done = passes[k];
         errors[k] = plane_error(&im, 2.0);
-        print_message("point light, photons only: %3d passes, rms relative error %.4f\n", passes[k], errors[k]);
+        print_message("point light, photons only, %s: %3d passes, rms relative error %.4f\n", mode, passes[k],
+                      errors[k]);
         free(im.rgb);
     }
     assert_true(errors[1] < 0.75 * errors[0]);
@@ -236,6 +240,13 @@ static void point_light_on_plane_by_photons_converges(void **state) {
     assert_ppm_ok(ppm_renderer_get_int(r, "photons_emitted", &emitted));
     assert_int_equal(emitted, 128 * 20000);
     ppm_renderer_release(r);
+}
+
+static void point_light_on_plane_by_photons_converges(void **state) {
+    check_point_light_by_photons_converges(state, "sppm");
+}
+static void point_light_on_plane_by_photons_converges_pppm(void **state) {
+    check_point_light_by_photons_converges(state, "pppm");
 }
 
 static void spot_light_beam_and_cutoff(void **state) {
@@ -483,9 +494,13 @@ int main(void) {
         cmocka_unit_test_setup_teardown(furnace_with_glass_mirror_and_coat, scene_fixture_setup,
                                         scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(furnace_with_objects_ppm_mode, scene_fixture_setup, scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(furnace_with_objects_pppm_mode, scene_fixture_setup, scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(furnace_pppm_photons_only, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(point_light_on_plane_by_shadow_rays, scene_fixture_setup,
                                         scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(point_light_on_plane_by_photons_converges, scene_fixture_setup,
+                                        scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(point_light_on_plane_by_photons_converges_pppm, scene_fixture_setup,
                                         scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(spot_light_beam_and_cutoff, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(photons_agree_with_shadow_rays_for_two_lights, scene_fixture_setup,

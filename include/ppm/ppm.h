@@ -542,8 +542,11 @@ PPM_API ppm_status ppm_renderer_retain(ppm_renderer renderer);
 PPM_API void ppm_renderer_release(ppm_renderer renderer);
 
 /* Settings (defaults):
- *   "mode"                  string "sppm" (stochastic PPM, new eye pass each pass) or "ppm"
- *                           (classic: hit points fixed by the first pass)      default "sppm"
+ *   "mode"                  string "sppm" (stochastic PPM, new eye pass each pass), "ppm"
+ *                           (classic: hit points fixed by the first pass) or "pppm"
+ *                           (probabilistic PPM: each pass's radius depends on its index
+ *                           only, so passes render apart and merge; see partial renders)
+ *                                                                              default "sppm"
  *   "photons_per_pass"      int    1 .. 2^31                                  default 200000
  *   "alpha"                 double radius reduction in (0, 1]                 default 2/3
  *   "initial_radius"        double scene units; 0 = automatic                 default 0
@@ -553,7 +556,8 @@ PPM_API void ppm_renderer_release(ppm_renderer renderer);
  *   "hit_point_search"      string "grid" (hashed) or "kdtree" (nanoflann)    default "grid"
  *   "direct_lighting"       int    1: light sources by shadow rays; 0: by photons default 1
  * Typed settings as described at the top of this header. mode, seed, direct_lighting and
- * the initial radius settings are fixed after the first pass (INVALID_OPERATION); unknown
+ * the initial radius settings are fixed after the first pass (INVALID_OPERATION), in "pppm"
+ * mode photons_per_pass, alpha and max_depth too; unknown
  * keys, wrong types and values out of range are INVALID_ARGUMENT. Read-only ints: "passes",
  * "photons_emitted", "width", "height", "lights" (the light sources photons leave: point,
  * spot and area lights; 0 renders black); read-only doubles: "last_eye_pass_seconds",
@@ -610,6 +614,69 @@ PPM_API ppm_status ppm_renderer_get_layer(ppm_renderer renderer, const char *lay
  * readers; load must not overlap any other call on the renderer. */
 PPM_API ppm_status ppm_renderer_save_checkpoint(ppm_renderer renderer, const char *path);
 PPM_API ppm_status ppm_renderer_load_checkpoint(ppm_renderer renderer, const char *path);
+
+/* Partial renders: passes of one render in "pppm" mode, rendered by any number of processes
+ * in any order, and merged exactly. In "pppm" mode pass i uses the gather radius
+ * r_i^2 = r_0^2 prod_{k=1..i} (k - 1 + alpha) / k (Knaus and Zwicker 2011) and random numbers
+ * drawn from (seed, i) only; the image is the mean of the passes' estimates, each rounded
+ * once to a multiple of 2^-40 and summed as 128-bit integers. So merging the partials of
+ * passes 0..N-1 gives the same bits as one process rendering N passes, whatever the split,
+ * the order and the thread counts. A partial records the render's identity (image size,
+ * camera, scene, mode, seed, direct_lighting, initial radius, alpha, photons_per_pass,
+ * max_depth); partials of different renders or with a pass in common do not merge.
+ * Checkpoints of a "pppm" render are partials, so ppm_renderer_load_checkpoint takes them. */
+typedef struct ppm_partial_t *ppm_partial;
+
+/* Renders pass `pass_index` of a "pppm" render (ppm_render_pass renders the lowest index not
+ * yet rendered). Errors as ppm_render_pass, and INVALID_OPERATION (another mode, or the pass
+ * is rendered already), INVALID_ARGUMENT (NULL, pass_index >= 2^32). */
+PPM_API ppm_status ppm_render_pass_index(ppm_renderer renderer, uint64_t pass_index);
+/* The renderer's passes so far as a new partial (the caller owns the one reference), or
+ * saved to `path` atomically. Errors: INVALID_OPERATION (not "pppm", or no pass completed),
+ * IO (save), INVALID_ARGUMENT (NULL). Thread safe, also during a pass (the state after the
+ * last completed pass). */
+PPM_API ppm_status ppm_renderer_get_partial(ppm_renderer renderer, ppm_partial *out_partial);
+PPM_API ppm_status ppm_renderer_save_partial(ppm_renderer renderer, const char *path);
+/* Adds a partial's passes to the renderer's (e.g. to go on rendering other passes, or to read
+ * the merged image through ppm_renderer_get_layer). Errors: INVALID_ARGUMENT (NULL, a partial
+ * of another render: the message names what differs; a pass the renderer holds already: the
+ * message names it), INVALID_OPERATION (not "pppm", or during a pass). */
+PPM_API ppm_status ppm_renderer_merge_partial(ppm_renderer renderer, ppm_partial partial);
+
+/* A partial from a file written by ppm_renderer_save_partial / ppm_partial_save, or from
+ * bytes of ppm_partial_serialize. Errors: IO (cannot read), PARSE (not a partial, another
+ * version, truncated or corrupt: the message names the file and what is wrong),
+ * OUT_OF_MEMORY, INVALID_ARGUMENT (NULL). */
+PPM_API ppm_status ppm_partial_load(const char *path, ppm_partial *out_partial);
+PPM_API ppm_status ppm_partial_load_memory(const void *data, size_t size, ppm_partial *out_partial);
+/* Writes the partial to `path` atomically. Errors: IO, INVALID_ARGUMENT (NULL). */
+PPM_API ppm_status ppm_partial_save(ppm_partial partial, const char *path);
+/* The partial's file bytes in memory owned by the partial, valid until it changes (merge,
+ * set) or is released. Errors: INVALID_ARGUMENT (NULL), OUT_OF_MEMORY. */
+PPM_API ppm_status ppm_partial_serialize(ppm_partial partial, const void **out_data, size_t *out_size);
+/* Adds the passes of `from` to `into` (from is unchanged). Errors: INVALID_ARGUMENT (NULL, the
+ * same partial twice, another render's partial or overlapping passes: the message names both
+ * partials' files and what differs or the first common passes; `into` is then unchanged). */
+PPM_API ppm_status ppm_partial_merge(ppm_partial into, ppm_partial from);
+/* Adds / drops a reference (atomic). Errors (retain): INVALID_ARGUMENT (NULL). */
+PPM_API ppm_status ppm_partial_retain(ppm_partial partial);
+PPM_API void ppm_partial_release(ppm_partial partial);
+/* Read-only ints: "width", "height", "passes" (how many the partial holds), "photons_emitted",
+ * "pass_ranges" (how many ranges ppm_partial_get_passes gives), "rejected" (pass estimates out
+ * of the fixed-point range: NaN, negative, or 2^40 and more); read-write: "pass_total", the
+ * render's planned pass count (0: not given; a merge keeps the larger), which tells which
+ * passes are missing. Errors: INVALID_ARGUMENT (NULL, unknown key, pass_total not in
+ * 0 .. 2^32). */
+PPM_API ppm_status ppm_partial_get_int(ppm_partial partial, const char *key, int64_t *out_value);
+PPM_API ppm_status ppm_partial_set_int(ppm_partial partial, const char *key, int64_t value);
+/* The passes held, as sorted half-open ranges [first, end): out[2k], out[2k+1]. `capacity` is
+ * the number of uint64_t that `out` holds (2 per range); *out_count gets the number of ranges.
+ * `out` may be NULL when capacity is 0. Errors: INVALID_ARGUMENT (NULL, capacity too small). */
+PPM_API ppm_status ppm_partial_get_passes(ppm_partial partial, uint64_t *out, size_t capacity, size_t *out_count);
+/* An image layer of the merged passes, as ppm_renderer_get_layer gives it: "radiance" (the mean
+ * of the passes' estimates), "radius" (the mean gather radius) or "photons" (photons found in
+ * all passes). Errors: INVALID_ARGUMENT (NULL, unknown layer, count too small). */
+PPM_API ppm_status ppm_partial_get_layer(ppm_partial partial, const char *layer, float *out, size_t count);
 
 /* ---------------------------------------------------------------------------------------- */
 /* Scene files (JSON; the format is docs/scene-format.md)                                    */

@@ -22,4 +22,20 @@ private:
     std::atomic<int64_t> references_{1};
 };
 
+// Holds the one reference a factory returned and releases it at the end of the scope.
+template <class T> class Owned {
+public:
+    explicit Owned(T *object) : object_(object) {}
+    Owned(const Owned &) = delete;
+    Owned &operator=(const Owned &) = delete;
+    ~Owned() {
+        if (object_) object_->release();
+    }
+    T *operator->() const { return object_; }
+    T &operator*() const { return *object_; }
+
+private:
+    T *object_;
+};
+
 } // namespace ppm

@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/binary_record.h"
 #include "io/text_file.h"
 #include "render/camera_paths.h"
 
@@ -21,7 +22,6 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <type_traits>
 
 namespace ppm {
 
@@ -30,60 +30,6 @@ namespace {
 constexpr char kMagic[8] = {'P', 'P', 'M', 'C', 'K', 'P', 'T', '\0'};
 constexpr std::uint32_t kVersion = 1;
 constexpr std::uint32_t kByteOrderMark = 0x01020304;
-
-class Fnv1a {
-public:
-    void add(const void *data, std::size_t size) {
-        const auto *bytes = static_cast<const unsigned char *>(data);
-        for (std::size_t i = 0; i < size; ++i) hash_ = (hash_ ^ bytes[i]) * 1099511628211ull;
-    }
-    template <class T> void add(const T &value) {
-        static_assert(std::is_arithmetic_v<T>);
-        add(&value, sizeof value);
-    }
-    void add(const Vec3 &v) { add(v.x), add(v.y), add(v.z); }
-    void add(const Rgb &c) { add(c.r), add(c.g), add(c.b); }
-    std::uint64_t value() const { return hash_; }
-
-private:
-    std::uint64_t hash_ = 14695981039346656037ull;
-};
-
-class Writer {
-public:
-    template <class T> void put(const T &value) { put_bytes(&value, sizeof value); }
-    void put_bytes(const void *data, std::size_t size) {
-        const auto *bytes = static_cast<const char *>(data);
-        buffer_.insert(buffer_.end(), bytes, bytes + size);
-    }
-    std::vector<char> &buffer() { return buffer_; }
-
-private:
-    std::vector<char> buffer_;
-};
-
-class Reader {
-public:
-    Reader(const std::string &path, const std::string &bytes) : path_(path), bytes_(bytes) {}
-    template <class T> T get(const char *what) {
-        T value;
-        get_bytes(&value, sizeof value, what);
-        return value;
-    }
-    void get_bytes(void *out, std::size_t size, const char *what) {
-        if (bytes_.size() - position_ < size)
-            fail(PPM_ERROR_PARSE, path_ + ": truncated checkpoint (ends in the " + what + ")");
-        std::memcpy(out, bytes_.data() + position_, size);
-        position_ += size;
-    }
-    std::size_t position() const { return position_; }
-    std::size_t remaining() const { return bytes_.size() - position_; }
-
-private:
-    const std::string &path_;
-    const std::string &bytes_;
-    std::size_t position_ = 0;
-};
 
 [[noreturn]] void corrupt(const std::string &path, const std::string &what) {
     fail(PPM_ERROR_PARSE, path + ": corrupt checkpoint: " + what);
@@ -179,7 +125,12 @@ std::uint64_t Renderer::scene_hash() const {
 }
 
 void Renderer::save_checkpoint(const std::string &path) const {
-    Writer w;
+    // A pass-independent render's checkpoint is its partial render (none before a pass).
+    if (settings_.mode == RenderSettings::Mode::Pppm && started()) {
+        Owned<Partial>(make_partial())->save(path);
+        return;
+    }
+    ByteWriter w;
     // The state after the last completed pass (no slots before the first: only the identity).
     film_.with_state([&](const std::vector<std::uint32_t> &slot_pixel, const std::vector<PixelStatistics> &stats,
                          std::uint64_t passes, std::uint64_t emitted) {
@@ -211,7 +162,9 @@ void Renderer::load_checkpoint(const std::string &path) {
     if (started()) fail(PPM_ERROR_INVALID_OPERATION, "a checkpoint can only be loaded before the first pass");
 
     const std::string bytes = read_text_file(path);
-    Reader r(path, bytes);
+    if (settings_.mode == RenderSettings::Mode::Pppm && bytes.compare(0, 8, "PPMPART", 8) == 0)
+        return load_partial_checkpoint(path, bytes);
+    ByteReader r(path, "checkpoint", bytes.data(), bytes.size());
     char magic[sizeof kMagic];
     r.get_bytes(magic, sizeof magic, "header");
     if (std::memcmp(magic, kMagic, sizeof magic) != 0) fail(PPM_ERROR_PARSE, path + ": not a libppm checkpoint");
@@ -247,7 +200,8 @@ void Renderer::load_checkpoint(const std::string &path) {
         differs("image size", std::to_string(width_) + " x " + std::to_string(height_),
                 std::to_string(width()) + " x " + std::to_string(height()));
     if (mode != static_cast<std::uint32_t>(settings_.mode))
-        differs("mode", mode == 0 ? "sppm" : "ppm", settings_.get_string("mode"));
+        differs("mode", mode <= 2 ? RenderSettings::mode_name(static_cast<RenderSettings::Mode>(mode)) : "unknown",
+                settings_.get_string("mode"));
     if (direct != static_cast<std::uint32_t>(settings_.direct_lighting))
         differs("direct_lighting", std::to_string(direct), std::to_string(settings_.direct_lighting));
     if (seed != settings_.seed) differs("seed", std::to_string(seed), std::to_string(settings_.seed));

@@ -43,6 +43,72 @@ void Film::commit_pass(Context &context, DensityEstimator &estimator, double alp
     passes_ += 1;
 }
 
+void Film::set_pass_independent(bool independent) {
+    if (independent == independent_) return;
+    if (passes_.load() > 0) fail(PPM_ERROR_INVALID_OPERATION, "the film's mode cannot change after a pass");
+    independent_ = independent;
+    sums_ = PassSums();
+}
+
+void Film::ensure_sums() {
+    if (sums_.pixel_count() == pixel_count()) return;
+    PassSums sums;
+    allocate_or_fail("the pass sums of " + description(), std::uint64_t(pixel_count()) * sizeof(PassSums::Pixel),
+                     [&] { sums = PassSums(pixel_count()); });
+    sums_ = std::move(sums);
+}
+
+void Film::commit_independent_pass(Context &context, DensityEstimator &estimator, std::uint64_t pass,
+                                   std::uint64_t photons) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ensure_sums();
+    const double per_photon = 1.0 / static_cast<double>(photons);
+    std::atomic<std::uint64_t> rejected{0};
+    context.run([&] {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, slot_pixel_.size(), 4096), [&](const auto &range) {
+            std::uint64_t rejected_here = 0;
+            for (std::size_t slot = range.begin(); slot < range.end(); ++slot) {
+                const std::uint32_t index = static_cast<std::uint32_t>(slot);
+                const PassPhotons pass_photons = estimator.take(index);
+                const HitPoint &hit_point = estimator.hit_point(index);
+                Rgb l = pass_direct_[slot];
+                double radius = 0;
+                if (hit_point.present()) {
+                    radius = std::sqrt(hit_point.r2);
+                    if (pass_photons.m > 0 && hit_point.r2 > 0)
+                        l += pass_photons.phi * (per_photon / (M_PI * hit_point.r2));
+                }
+                // One slot per pixel: each pixel's sums are added to by one thread.
+                rejected_here += sums_.add(slot_pixel_[slot], l, radius, pass_photons.m);
+            }
+            rejected.fetch_add(rejected_here, std::memory_order_relaxed);
+        });
+    });
+    sums_.add_rejected(rejected.load());
+    sums_.passes().insert(pass);
+    sums_.add_photons_emitted(photons);
+    photons_emitted_ += photons;
+    passes_.store(sums_.passes().count());
+}
+
+void Film::merge_sums(const PassSums &other) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ensure_sums();
+    sums_.merge(other);
+    photons_emitted_.store(sums_.photons_emitted());
+    passes_.store(sums_.passes().count());
+}
+
+std::uint64_t Film::lowest_missing_pass() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return sums_.passes().lowest_missing();
+}
+
+bool Film::holds_pass(std::uint64_t pass) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return sums_.passes().contains(pass);
+}
+
 std::size_t Film::layer_channels(const std::string &name) {
     if (name == "radiance") return 3;
     if (name == "radius" || name == "photons") return 1;
@@ -59,6 +125,15 @@ void Film::read_layer(const std::string &name, float *out) const {
     // lock (SPPM's slots, PPM's first eye pass): there is nothing to read yet, and touching
     // them would race. passes_ grows under the lock once they are final.
     if (passes == 0) return;
+    if (independent_) {
+        if (name == "radiance")
+            sums_.mean_radiance(out);
+        else if (name == "radius")
+            sums_.mean_radius(out);
+        else
+            sums_.photon_sums(out);
+        return;
+    }
     for (std::size_t slot = 0; slot < slot_pixel_.size(); ++slot) {
         const PixelStatistics &s = stats_[slot];
         float *pixel = out + static_cast<std::size_t>(slot_pixel_[slot]) * channels;

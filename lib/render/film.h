@@ -3,6 +3,10 @@
 // counts; the image layers are read from it. It knows no camera paths or photons: a pass
 // ends by folding the density estimator's photons into the statistics (commit_pass).
 //
+// A pass-independent film (set_pass_independent) keeps no statistics from pass to pass: each
+// pass's estimate is added to per-pixel fixed-point sums (PassSums, commit_independent_pass)
+// and the image is their mean, so passes can be rendered in any order and merged.
+//
 // Threads: the running pass writes slots and direct light without a lock (distinct slots from
 // distinct threads); commit_pass() and restore() take the lock that the readers (read_layer,
 // with_state) take, so a reader sees the state after the last completed pass.
@@ -10,6 +14,7 @@
 
 #include "photon/sppm_statistics.h"
 #include "render/density_estimator.h"
+#include "render/pass_sums.h"
 
 #include <atomic>
 #include <cstdint>
@@ -48,6 +53,25 @@ public:
     // reduced by alpha), its direct light added, and the counts advanced.
     void commit_pass(Context &context, DensityEstimator &estimator, double alpha, std::uint64_t photons);
 
+    // A pass-independent film: not after a pass has completed.
+    void set_pass_independent(bool independent);
+    bool pass_independent() const { return independent_; }
+    // Ends pass `pass` of a pass-independent film: each slot's estimate of this pass, its
+    // photons' flux over pi r^2 and `photons` emitted plus its direct light, added to its
+    // pixel's sums. The pass must not be in the film yet.
+    void commit_independent_pass(Context &context, DensityEstimator &estimator, std::uint64_t pass,
+                                 std::uint64_t photons);
+    // f(sums) under the readers' lock (pass-independent films).
+    template <class F> void with_sums(F &&f) const {
+        std::lock_guard<std::mutex> lock(mutex_);
+        f(sums_);
+    }
+    // Adds another render's sums of disjoint passes (checked by the caller).
+    void merge_sums(const PassSums &other);
+    // The lowest pass index this pass-independent film does not hold.
+    std::uint64_t lowest_missing_pass() const;
+    bool holds_pass(std::uint64_t pass) const;
+
     std::uint64_t passes() const { return passes_.load(); }
     std::uint64_t photons_emitted() const { return photons_emitted_.load(); }
 
@@ -72,10 +96,14 @@ public:
     void restore(std::vector<PixelStatistics> stats, std::uint64_t passes, std::uint64_t photons_emitted);
 
 private:
+    void ensure_sums(); // one entry per pixel, under the lock
+
     int width_, height_;
     std::vector<std::uint32_t> slot_pixel_;
     std::vector<PixelStatistics> stats_;
     std::vector<Rgb> pass_direct_;
+    bool independent_ = false;
+    PassSums sums_; // pass-independent films: one entry per pixel, made with the first pass
     std::atomic<std::uint64_t> passes_{0};
     std::atomic<std::uint64_t> photons_emitted_{0};
     mutable std::mutex mutex_;

@@ -48,6 +48,10 @@ public:
     // Makes the film's slots exactly as the first pass makes them, and nothing else (to check
     // a checkpoint's slots against).
     virtual void make_slots(const PassInputs &in, Film &film, DensityEstimator &estimator) = 0;
+
+    // Whether each pass stands alone (its radii depend on its index only): the film then sums
+    // pass estimates (Film::commit_independent_pass) instead of carrying statistics over.
+    virtual bool pass_independent() const { return false; }
 };
 
 // The integrator of a mode (integrator_registry.cpp).

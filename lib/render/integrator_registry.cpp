@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "render/ppm_integrator.h"
+#include "render/pppm_integrator.h"
 #include "render/sppm_integrator.h"
 
 namespace ppm {
@@ -20,6 +21,7 @@ template <class T> std::unique_ptr<Integrator> make() { return std::make_unique<
 constexpr Registration kIntegrators[] = {
     {RenderSettings::Mode::Sppm, make<SppmIntegrator>},
     {RenderSettings::Mode::Ppm, make<PpmIntegrator>},
+    {RenderSettings::Mode::Pppm, make<PppmIntegrator>},
 };
 
 } // namespace

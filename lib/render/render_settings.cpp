@@ -33,14 +33,23 @@ void require_not_started(const std::string &key, bool started) {
     if (started) fail(PPM_ERROR_INVALID_OPERATION, "render setting '" + key + "' cannot change after the first pass");
 }
 
+// Settings that every pass of a pass-independent render must share.
+void require_not_started_in_pppm(const std::string &key, RenderSettings::Mode mode, bool started) {
+    if (started && mode == RenderSettings::Mode::Pppm)
+        fail(PPM_ERROR_INVALID_OPERATION,
+             "render setting '" + key + "' cannot change after the first pass in pppm mode");
+}
+
 } // namespace
 
 void RenderSettings::set_int(const std::string &key, std::int64_t value, bool started) {
     if (key == "photons_per_pass") {
+        require_not_started_in_pppm(key, mode, started);
         if (value < 1 || value > kMaxPhotonsPerPass)
             invalid_argument("photons_per_pass must be in 1 .. 2^31, not " + std::to_string(value));
         photons_per_pass = static_cast<std::uint64_t>(value);
     } else if (key == "max_depth") {
+        require_not_started_in_pppm(key, mode, started);
         if (value < 1 || value > kMaxDepthLimit)
             invalid_argument("max_depth must be in 1 .. " + std::to_string(kMaxDepthLimit) + ", not " +
                              std::to_string(value));
@@ -63,6 +72,7 @@ void RenderSettings::set_double(const std::string &key, double value, bool start
     if (!std::isfinite(value))
         invalid_argument("render setting '" + key + "' must be finite, not " + format_number(value));
     if (key == "alpha") {
+        require_not_started_in_pppm(key, mode, started);
         if (!(value > 0 && value <= 1)) invalid_argument("alpha must be in (0, 1], not " + format_number(value));
         alpha = value;
     } else if (key == "initial_radius") {
@@ -91,8 +101,10 @@ void RenderSettings::set_string(const std::string &key, const std::string &value
             mode = Mode::Sppm;
         else if (value == "ppm")
             mode = Mode::Ppm;
+        else if (value == "pppm")
+            mode = Mode::Pppm;
         else
-            invalid_argument("mode must be \"sppm\" or \"ppm\", not \"" + value + "\"");
+            invalid_argument("mode must be \"sppm\", \"ppm\" or \"pppm\", not \"" + value + "\"");
     } else if (key == "hit_point_search") {
         if (value == "grid")
             search = Search::Grid;
@@ -123,9 +135,18 @@ double RenderSettings::get_double(const std::string &key) const {
 }
 
 std::string RenderSettings::get_string(const std::string &key) const {
-    if (key == "mode") return mode == Mode::Sppm ? "sppm" : "ppm";
+    if (key == "mode") return mode_name(mode);
     if (key == "hit_point_search") return search == Search::Grid ? "grid" : "kdtree";
     unknown(key, "string");
+}
+
+const char *RenderSettings::mode_name(Mode mode) {
+    switch (mode) {
+    case Mode::Sppm: return "sppm";
+    case Mode::Ppm: return "ppm";
+    case Mode::Pppm: return "pppm";
+    }
+    return "unknown";
 }
 
 } // namespace ppm

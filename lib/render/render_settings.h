@@ -5,7 +5,9 @@
 // |--------------------|--------|---------|----------------------------------------------------|
 // | mode               | string | sppm    | "sppm": new jittered eye pass every pass (Hachisuka |
 // |                    |        |         | and Jensen 2009); "ppm": hit points fixed by the    |
-// |                    |        |         | first eye pass, split at glass and coats (2008)     |
+// |                    |        |         | first eye pass, split at glass and coats (2008);    |
+// |                    |        |         | "pppm": pass-independent radii (Knaus and Zwicker   |
+// |                    |        |         | 2011): passes can be rendered apart and merged      |
 // | photons_per_pass   | int    | 200000  | photon paths traced per pass, 1 .. 2^31             |
 // | alpha              | double | 2/3     | radius reduction, in (0, 1]                         |
 // | initial_radius     | double | 0       | gather radius in scene units; 0 = automatic:        |
@@ -21,7 +23,9 @@
 // |                    |        |         | 0: from photons too (for tests and comparisons)     |
 //
 // mode, seed, direct_lighting, initial_radius and initial_radius_pixels are fixed once the first pass has run;
-// the others may change between passes.
+// in pppm mode photons_per_pass, alpha and max_depth too (every pass must be the same
+// experiment for the mean, and for partial renders to merge); the others may change between
+// passes.
 #pragma once
 
 #include <cstdint>
@@ -34,7 +38,7 @@ constexpr std::int64_t kMaxPhotonsPerPass = std::int64_t(1) << 31;
 constexpr int kMaxDepthLimit = 1000;
 
 struct RenderSettings {
-    enum class Mode { Sppm, Ppm };
+    enum class Mode { Sppm, Ppm, Pppm }; // the numbers are what checkpoints record
     enum class Search { Grid, KdTree };
 
     Mode mode = Mode::Sppm;
@@ -57,6 +61,8 @@ struct RenderSettings {
     std::int64_t get_int(const std::string &key) const;
     double get_double(const std::string &key) const;
     std::string get_string(const std::string &key) const;
+
+    static const char *mode_name(Mode mode);
 };
 
 } // namespace ppm

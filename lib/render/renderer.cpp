@@ -53,22 +53,46 @@ double Renderer::flux_scale() const {
 void Renderer::render_pass() {
     std::unique_lock<std::mutex> one_pass(pass_mutex_, std::try_to_lock);
     if (!one_pass.owns_lock()) fail(PPM_ERROR_INVALID_OPERATION, "another pass of this renderer is running");
+    run_pass(integrator().pass_independent() ? film_.lowest_missing_pass() : film_.passes());
+}
+
+void Renderer::render_pass_index(std::uint64_t index) {
+    std::unique_lock<std::mutex> one_pass(pass_mutex_, std::try_to_lock);
+    if (!one_pass.owns_lock()) fail(PPM_ERROR_INVALID_OPERATION, "another pass of this renderer is running");
+    require_pass_independent("rendering a pass by its index");
+    if (index >= kPassIndexLimit) invalid_argument("pass index " + std::to_string(index) + " is not below 2^32");
+    if (film_.holds_pass(index))
+        fail(PPM_ERROR_INVALID_OPERATION, "pass " + std::to_string(index) + " is rendered already");
+    run_pass(index);
+}
+
+void Renderer::require_pass_independent(const char *what) const {
+    if (settings_.mode != RenderSettings::Mode::Pppm)
+        fail(PPM_ERROR_INVALID_OPERATION, std::string(what) + " needs mode \"pppm\" (pass-independent), not \"" +
+                                              settings_.get_string("mode") + "\"");
+}
+
+void Renderer::run_pass(std::uint64_t index) {
     if (!scene_->committed())
         fail(PPM_ERROR_INVALID_OPERATION, "the scene was changed after the renderer was created and is not committed");
     const auto check_cancel = [this] {
         if (cancel_requested_.exchange(false)) fail(PPM_ERROR_CANCELLED, "render pass cancelled");
     };
     check_cancel();
-    const std::uint32_t pass = static_cast<std::uint32_t>(film_.passes());
+    if (index >= kPassIndexLimit) fail(PPM_ERROR_INVALID_OPERATION, "the render has 2^32 passes, its limit");
+    const std::uint32_t pass = static_cast<std::uint32_t>(index);
+    Integrator &mode = integrator();
+    if (!started()) film_.set_pass_independent(mode.pass_independent());
     const PassInputs in = pass_inputs();
     // A cancelled first pass leaves no slots: they may be incomplete, and the next pass makes them again.
+    const bool first = !started();
     const auto discard = [&] {
-        if (pass == 0) film_.clear_slots();
+        if (first) film_.clear_slots();
         check_cancel();
     };
 
     const auto eye_start = std::chrono::steady_clock::now();
-    const std::optional<HitPointBounds> eye_bounds = integrator().eye_pass(in, pass, film_, estimator_);
+    const std::optional<HitPointBounds> eye_bounds = mode.eye_pass(in, pass, film_, estimator_);
     if (cancelled()) discard();
     const auto build_start = std::chrono::steady_clock::now();
     estimator_.build(scene_->context(), settings_.search, eye_bounds);
@@ -84,7 +108,10 @@ void Renderer::render_pass() {
     last_photon_seconds_ = seconds_since(photon_start);
     last_eye_seconds_ = eye_seconds;
     last_search_build_seconds_ = build_seconds;
-    film_.commit_pass(scene_->context(), estimator_, settings_.alpha, settings_.photons_per_pass);
+    if (mode.pass_independent())
+        film_.commit_independent_pass(scene_->context(), estimator_, index, settings_.photons_per_pass);
+    else
+        film_.commit_pass(scene_->context(), estimator_, settings_.alpha, settings_.photons_per_pass);
 }
 
 } // namespace ppm

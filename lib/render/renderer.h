@@ -9,7 +9,9 @@
 //    them and the flux the photons add;
 //  - the photon tracer (photon_tracer.h) traces the photon paths and deposits them;
 //  - the film (film.h) keeps the progressive statistics and gives the image layers;
-//  - checkpoints (checkpoint.cpp) save and restore the film with the render's identity.
+//  - checkpoints (checkpoint.cpp) save and restore the film with the render's identity;
+//  - partial renders (partial.h, renderer_partial.cpp): the pass sums of a pass-independent
+//    render (pppm mode), saved and merged exactly; its checkpoints are partials too.
 // Direct light (light sources seen by a visible point, and emitters seen through specular
 // chains) is estimated by ray tracing in the eye pass, so photons are not stored at their
 // first hit: there they would count direct light a second time.
@@ -28,6 +30,7 @@
 #include "render/density_estimator.h"
 #include "render/film.h"
 #include "render/integrator.h"
+#include "render/partial.h"
 #include "render/photon_tracer.h"
 #include "render/render_scene.h"
 #include "render/render_settings.h"
@@ -58,6 +61,10 @@ public:
     // (the pass is then discarded: the image stays as it was), INVALID_OPERATION when another
     // pass is running or the scene was changed and not committed again.
     void render_pass();
+    // Pass `index` of a pass-independent render (pppm mode), in any order; render_pass() there
+    // renders the lowest index not yet rendered. Throws as render_pass(), and INVALID_OPERATION
+    // in another mode or for a pass already rendered, INVALID_ARGUMENT for an index >= 2^32.
+    void render_pass_index(std::uint64_t index);
     // Asks the running pass, or the next one if none runs, to stop as soon as it can.
     void cancel() { cancel_requested_.store(true); }
 
@@ -84,7 +91,19 @@ public:
     void save_checkpoint(const std::string &path) const;
     void load_checkpoint(const std::string &path);
 
+    // Partial renders (pppm mode; INVALID_OPERATION in another mode). make_partial: the state
+    // after the last completed pass (INVALID_OPERATION before any), the caller owns the one
+    // reference. merge_partial: adds a partial's passes; INVALID_ARGUMENT for one of another
+    // render or with passes this renderer holds (the message names both), INVALID_OPERATION
+    // while a pass runs.
+    RenderIdentity identity() const;
+    Partial *make_partial() const;
+    void merge_partial(const Partial &partial);
+
 private:
+    void run_pass(std::uint64_t index); // under pass_mutex_
+    void require_pass_independent(const char *what) const;
+    void load_partial_checkpoint(const std::string &path, const std::string &bytes);
     PassInputs pass_inputs() const;
     // The integrator of the current mode (made anew while the mode may still change).
     Integrator &integrator();

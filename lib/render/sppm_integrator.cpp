@@ -30,7 +30,7 @@ struct SppmIntegrator::PathGroup {
 };
 
 void SppmIntegrator::trace_paths(const PassInputs &in, std::uint32_t first, std::uint32_t count, std::uint32_t pass,
-                                 Film &film, DensityEstimator &estimator, PathGroup &group) {
+                                 Film &film, DensityEstimator &estimator, PathGroup &group) const {
     CounterRng *const rngs = group.rngs;
     ppm_ray *const rays = group.rays;
     SurfacePoint *const hits = group.hits;
@@ -54,7 +54,7 @@ void SppmIntegrator::trace_paths(const PassInputs &in, std::uint32_t first, std:
     add_direct_light(in, vps, at, rngs, count, direct);
     for (std::uint32_t k = 0; k < count; ++k) {
         film.set_pass_direct(first + k, direct[k]);
-        estimator.store(first + k, vps[k], film.radius2(first + k, vps[k].initial_r2));
+        estimator.store(first + k, vps[k], gather_r2(film, first + k, vps[k]));
     }
 }
 
