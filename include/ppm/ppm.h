@@ -679,6 +679,28 @@ PPM_API ppm_status ppm_partial_get_passes(ppm_partial partial, uint64_t *out, si
 PPM_API ppm_status ppm_partial_get_layer(ppm_partial partial, const char *layer, float *out, size_t count);
 
 /* ---------------------------------------------------------------------------------------- */
+/* Images                                                                                    */
+/* ---------------------------------------------------------------------------------------- */
+
+/* An extra single-channel EXR layer: `name` is the channel name, `data` one float per pixel. */
+typedef struct ppm_image_layer {
+    const char *name;
+    const float *data;
+} ppm_image_layer;
+
+/* Checks that `path` names an image format that ppm_image_write can write (its extension),
+ * before a long render finds out. Errors: INVALID_ARGUMENT (NULL, no or unknown extension). */
+PPM_API ppm_status ppm_image_check_path(const char *path);
+/* Writes an image atomically (encoded in memory, written beside `path`, synced and renamed):
+ * .exr, .hdr and .pfm get linear float RGB radiance as given (EXR also the `layers`, zip
+ * compressed); other formats (.png, .jpg, .tif, ...) 8-bit sRGB of the radiance scaled by
+ * 2^exposure and clamped to [0, 1]. `radiance` is 3 floats per pixel, rows from the top.
+ * Errors: INVALID_ARGUMENT (NULL, unknown format, size not in 1 .. 2^28 pixels, exposure not in
+ * [-100, 100]), IO (cannot encode or write: the message names the path and the reason). */
+PPM_API ppm_status ppm_image_write(const char *path, const float *radiance, uint32_t width, uint32_t height,
+                                   const ppm_image_layer *layers, size_t layer_count, double exposure);
+
+/* ---------------------------------------------------------------------------------------- */
 /* Scene files (JSON; the format is docs/scene-format.md)                                    */
 /* ---------------------------------------------------------------------------------------- */
 

@@ -211,8 +211,8 @@ void Partial::check_mergeable(const RenderIdentity &identity, const PassSet &pas
     if (!difference.empty())
         invalid_argument(origin + " is a partial of another render than " + origin_ + ": " + difference);
     if (const auto overlap = passes.first_overlap(sums_.passes()))
-        invalid_argument(origin + " and " + origin_ + " both hold pass " +
-                         (overlap->end - overlap->first == 1 ? "" : "es ") + PassSet::describe(*overlap));
+        invalid_argument(origin + " and " + origin_ + " both hold pass" +
+                         (overlap->end - overlap->first == 1 ? " " : "es ") + PassSet::describe(*overlap));
 }
 
 void Partial::merge(const Partial &other) {

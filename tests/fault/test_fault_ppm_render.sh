@@ -71,22 +71,22 @@ faulty() {
 }
 
 # --- images: every step of the write fails (EXR); PNG goes through the same writer -----------
-# The shim sees the temporary file beside the image: ".old.exr.tmp-XXXXXX".
-faulty "old.exr: disk full at once" .old.exr old.exr "No space left on device" \
+# The shim sees the temporary file beside the image: "old.exr.tmp-XXXXXX".
+faulty "old.exr: disk full at once" old.exr old.exr "No space left on device" \
   PPM_FAULT_BYTES=0 -- -o old.exr
-faulty "old.exr: disk full after 100 bytes" .old.exr old.exr "No space left on device" \
+faulty "old.exr: disk full after 100 bytes" old.exr old.exr "No space left on device" \
   PPM_FAULT_BYTES=100 -- -o old.exr
-faulty "old.exr: write I/O error" .old.exr old.exr "Input/output error" \
+faulty "old.exr: write I/O error" old.exr old.exr "Input/output error" \
   PPM_FAULT_OPS=write PPM_FAULT_NTH=1 PPM_FAULT_ERRNO=EIO -- -o old.exr
-faulty "old.exr: fsync I/O error" .old.exr old.exr "Input/output error" \
+faulty "old.exr: fsync I/O error" old.exr old.exr "Input/output error" \
   PPM_FAULT_OPS=fsync PPM_FAULT_NTH=1 PPM_FAULT_ERRNO=EIO -- -o old.exr
-faulty "old.exr: close I/O error" .old.exr old.exr "Input/output error" \
+faulty "old.exr: close I/O error" old.exr old.exr "Input/output error" \
   PPM_FAULT_OPS=close PPM_FAULT_NTH=1 PPM_FAULT_ERRNO=EIO -- -o old.exr
-faulty "old.exr: rename fails" .old.exr old.exr "Disk quota exceeded" \
+faulty "old.exr: rename fails" old.exr old.exr "Disk quota exceeded" \
   PPM_FAULT_OPS=rename PPM_FAULT_NTH=1 PPM_FAULT_ERRNO=EDQUOT -- -o old.exr
-faulty "old.png: disk full after 100 bytes" .old.png old.png "No space left on device" \
+faulty "old.png: disk full after 100 bytes" old.png old.png "No space left on device" \
   PPM_FAULT_BYTES=100 -- -o old.png
-faulty "old.png: close I/O error" .old.png old.png "Input/output error" \
+faulty "old.png: close I/O error" old.png old.png "Input/output error" \
   PPM_FAULT_OPS=close PPM_FAULT_NTH=1 PPM_FAULT_ERRNO=EIO -- -o old.png
 
 # --- the checkpoint, written at the end (the images before it succeed) -----------------------

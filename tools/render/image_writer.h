@@ -1,6 +1,5 @@
-// Writes the renderer's image through OpenImageIO, atomically: encoded in memory, written to a
-// temporary file beside the target, synced and renamed over it. A viewer or a
-// crash sees the previous image or the new one, never half of one.
+// The image of a render (radiance and extra layers) as ppm-render and ppm-merge write it,
+// through libppm's atomic image writer (ppm_image_write).
 #pragma once
 
 #include <string>
@@ -19,13 +18,10 @@ struct Image {
     std::vector<Layer> layers;   // extra single-channel layers, EXR only
 };
 
-// True for extensions written as linear float (EXR, HDR, PFM); the rest get sRGB 8 bits.
-bool is_float_format(const std::string &path);
-
-// Throws std::runtime_error naming the path when OpenImageIO has no writer for its extension.
+// Throws std::runtime_error with libppm's message (naming the path) for a format it cannot write.
 void check_image_format(const std::string &path);
 
-// Throws std::runtime_error naming the path and OIIO's reason.
+// Throws std::runtime_error naming the path and the reason.
 void write_image_atomically(const std::string &path, const Image &image, double exposure);
 
 } // namespace ppm_render

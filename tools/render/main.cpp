@@ -15,6 +15,7 @@
 #include <new>
 #include <string>
 #include <thread>
+#include <vector>
 
 using namespace ppm_render;
 
@@ -69,14 +70,59 @@ Image read_image(ppm_renderer renderer, const Options &options) {
 }
 
 void write_images(ppm_renderer renderer, const Options &options) {
+    if (options.outputs.empty()) return; // a partial render without -o
     const Image image = read_image(renderer, options);
     for (const std::string &path : options.outputs) write_image_atomically(path, image, options.exposure);
 }
 
 std::string joined_outputs(const Options &options) {
     std::string text;
+    if (options.partial_render()) text = "partial " + options.partial;
     for (const std::string &path : options.outputs) text += (text.empty() ? "" : ", ") + path;
     return text;
+}
+
+// The passes of a partial render: those of its range that the renderer does not hold yet
+// (all of them, unless it resumed from the partial).
+std::vector<uint64_t> passes_to_render(ppm_renderer renderer, uint64_t first, uint64_t end) {
+    std::vector<uint64_t> held;
+    int64_t passes = 0;
+    check(ppm_renderer_get_int(renderer, "passes", &passes));
+    if (passes > 0) {
+        ppm_partial partial = nullptr;
+        check(ppm_renderer_get_partial(renderer, &partial));
+        size_t count = 0;
+        ppm_status status = ppm_partial_get_passes(partial, nullptr, 0, &count);
+        held.resize(2 * count);
+        if (status == PPM_OK) status = ppm_partial_get_passes(partial, held.data(), held.size(), &count);
+        ppm_partial_release(partial);
+        check(status);
+    }
+    std::vector<uint64_t> todo;
+    for (uint64_t pass = first; pass < end; ++pass) {
+        bool done = false;
+        for (size_t k = 0; k + 1 < held.size() && !done; k += 2) done = held[k] <= pass && pass < held[k + 1];
+        if (!done) todo.push_back(pass);
+    }
+    return todo;
+}
+
+// A partial render's state, or the checkpoint: written atomically, the render's planned pass
+// count recorded in the partial so that ppm-merge can name missing passes.
+void save_state(ppm_renderer renderer, const Options &options, uint64_t pass_total) {
+    if (!options.partial_render()) {
+        check(ppm_renderer_save_checkpoint(renderer, options.checkpoint.c_str()), "checkpoint");
+        return;
+    }
+    int64_t passes = 0;
+    check(ppm_renderer_get_int(renderer, "passes", &passes));
+    if (passes == 0) return; // nothing to save yet
+    ppm_partial partial = nullptr;
+    check(ppm_renderer_get_partial(renderer, &partial), "partial");
+    ppm_status status = ppm_partial_set_int(partial, "pass_total", static_cast<int64_t>(pass_total));
+    if (status == PPM_OK) status = ppm_partial_save(partial, options.partial.c_str());
+    ppm_partial_release(partial);
+    check(status, "--partial");
 }
 
 // Cancels the renderer when the time budget runs out, unless stopped first.
@@ -131,6 +177,8 @@ int render(const Options &options, SignalWatcher &signals) {
     if (options.threads > 0) check(ppm_context_set_int(context, "threads", options.threads), "--threads");
     check(ppm_scene_file_load(context, options.scene.c_str(), &file));
     check(ppm_scene_file_create_renderer(file, &renderer), options.scene);
+    // Partial renders are pass-independent whatever the scene's mode.
+    if (options.partial_render()) check(ppm_renderer_set_string(renderer, "mode", "pppm"), "--partial");
     if (options.photons > 0) check(ppm_renderer_set_int(renderer, "photons_per_pass", options.photons), "--photons");
     if (options.seed >= 0) check(ppm_renderer_set_int(renderer, "seed", options.seed), "--seed");
     for (const auto &[key, value] : options.settings) apply_setting(renderer, key, value);
@@ -145,7 +193,17 @@ int render(const Options &options, SignalWatcher &signals) {
                             : budget > 0       ? 0 // until the time is up
                                                : 16;
 
+    if (options.partial_render() && target == 0)
+        throw ApiError{"--partial needs a pass count (--passes N, or integrator.passes in the scene)"};
+    if (options.pass_end > 0 && static_cast<uint64_t>(options.pass_end) > target)
+        throw ApiError{"--pass-range ends at pass " + std::to_string(options.pass_end - 1) + ", beyond the " +
+                       std::to_string(target) + " passes of the render"};
+    const uint64_t range_first = options.pass_first >= 0 ? static_cast<uint64_t>(options.pass_first) : 0;
+    const uint64_t range_end = options.pass_end > 0 ? static_cast<uint64_t>(options.pass_end) : target;
+
     if (!options.resume.empty()) check(ppm_renderer_load_checkpoint(renderer, options.resume.c_str()), "--resume");
+    std::vector<uint64_t> todo;
+    if (options.partial_render()) todo = passes_to_render(renderer, range_first, range_end);
     int64_t passes = 0, width = 0, height = 0, photons_per_pass = 0, threads = 0;
     check(ppm_renderer_get_int(renderer, "passes", &passes));
     check(ppm_renderer_get_int(renderer, "width", &width));
@@ -159,14 +217,19 @@ int render(const Options &options, SignalWatcher &signals) {
         std::fprintf(stderr, "ppm-render: %s: %lld x %lld, %s, %lld photons/pass, ", options.scene.c_str(),
                      static_cast<long long>(width), static_cast<long long>(height), mode,
                      static_cast<long long>(photons_per_pass));
-        if (target > 0 && budget > 0)
+        if (options.partial_render()) {
+            std::fprintf(stderr, "passes %llu-%llu of %llu (%zu to render) -> partial %s",
+                         static_cast<unsigned long long>(range_first), static_cast<unsigned long long>(range_end - 1),
+                         static_cast<unsigned long long>(target), todo.size(), options.partial.c_str());
+            if (budget > 0) std::fprintf(stderr, ", or %.1f s, whichever ends first", budget);
+        } else if (target > 0 && budget > 0)
             std::fprintf(stderr, "%llu passes or %.1f s, whichever ends first", static_cast<unsigned long long>(target),
                          budget);
         else if (target > 0)
             std::fprintf(stderr, "%llu passes", static_cast<unsigned long long>(target));
         else
             std::fprintf(stderr, "passes until %.1f s", budget);
-        if (passes > 0) std::fprintf(stderr, " (resuming after pass %lld)", static_cast<long long>(passes));
+        if (passes > 0) std::fprintf(stderr, " (resuming with %lld passes done)", static_cast<long long>(passes));
         std::fprintf(stderr, ", %lld threads\n", static_cast<long long>(threads));
     }
 
@@ -187,11 +250,16 @@ int render(const Options &options, SignalWatcher &signals) {
     double last_pass_seconds = 0;
     bool stopped_early = false;
 
-    while (target == 0 || static_cast<uint64_t>(passes) < target) {
+    std::size_t next_todo = 0;
+    const bool partial = options.partial_render();
+    // The progress bar counts the passes of this run's range for a partial render.
+    const uint64_t shown_target = partial ? todo.size() + static_cast<uint64_t>(passes) : target;
+    while (partial ? next_todo < todo.size() : target == 0 || static_cast<uint64_t>(passes) < target) {
         // No pass starts that would, at the last pass's pace, end after the budget.
         if (budget > 0 && passes > first_pass && seconds_since(start) + last_pass_seconds > budget) break;
         const Clock::time_point pass_start = Clock::now();
-        const ppm_status status = ppm_render_pass(renderer);
+        const ppm_status status =
+            partial ? ppm_render_pass_index(renderer, todo[next_todo]) : ppm_render_pass(renderer);
         if (status == PPM_ERROR_CANCELLED) {
             stopped_early = true;
             break;
@@ -212,14 +280,16 @@ int render(const Options &options, SignalWatcher &signals) {
         }
         last_pass_seconds = seconds_since(pass_start);
         ++passes;
+        ++next_todo;
 
         double photon_seconds = 0;
         check(ppm_renderer_get_double(renderer, "last_photon_pass_seconds", &photon_seconds));
         const double elapsed = seconds_since(start);
         const double per_pass = elapsed / static_cast<double>(passes - first_pass);
-        double eta = target > 0 ? per_pass * static_cast<double>(target - static_cast<uint64_t>(passes)) : -1;
+        double eta =
+            shown_target > 0 ? per_pass * static_cast<double>(shown_target - static_cast<uint64_t>(passes)) : -1;
         if (budget > 0) eta = eta < 0 ? budget - elapsed : std::min(eta, budget - elapsed);
-        progress.update(static_cast<uint64_t>(passes), target,
+        progress.update(static_cast<uint64_t>(passes), shown_target,
                         photon_seconds > 0 ? static_cast<double>(photons_per_pass) / photon_seconds : 0, elapsed, eta);
 
         if (seconds_since(last_write) >= options.write_interval) {
@@ -227,7 +297,7 @@ int render(const Options &options, SignalWatcher &signals) {
             last_write = Clock::now();
         }
         if (options.checkpoint_interval > 0 && seconds_since(last_checkpoint) >= options.checkpoint_interval) {
-            check(ppm_renderer_save_checkpoint(renderer, options.checkpoint.c_str()), "checkpoint");
+            save_state(renderer, options, target);
             last_checkpoint = Clock::now();
         }
     }
@@ -237,8 +307,7 @@ int render(const Options &options, SignalWatcher &signals) {
 
     const bool interrupted = signals.interrupted();
     const bool timed_out = stopped_early && !interrupted && deadline.expired();
-    if (interrupted || options.checkpoint_given)
-        check(ppm_renderer_save_checkpoint(renderer, options.checkpoint.c_str()), "checkpoint");
+    if (interrupted || options.checkpoint_given || partial) save_state(renderer, options, target);
     if (!options.quiet) {
         int64_t emitted = 0;
         check(ppm_renderer_get_int(renderer, "photons_emitted", &emitted));
@@ -255,6 +324,9 @@ int render(const Options &options, SignalWatcher &signals) {
                          budget);
         else if (options.checkpoint_given)
             std::fprintf(stderr, "ppm-render: checkpoint %s\n", options.checkpoint.c_str());
+        if (partial && next_todo < todo.size())
+            std::fprintf(stderr, "ppm-render: %zu passes of the range are not rendered; go on with --resume %s\n",
+                         todo.size() - next_todo, options.partial.c_str());
         if (passes == 0) std::fprintf(stderr, "ppm-render: warning: no pass completed; the image is black\n");
     }
     return 0;

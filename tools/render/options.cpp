@@ -38,6 +38,12 @@ const char *const usage_text =
     "  --checkpoint-interval S  seconds between periodic checkpoints (default 300; 0: never)\n"
     "  --resume PATH         continue a render from its checkpoint: with the same scene and\n"
     "                        options, the result equals the uninterrupted render\n"
+    "render farms (passes rendered apart and merged exactly with ppm-merge):\n"
+    "  --pass-range A:B      render passes A .. B-1 of the --passes N (0 <= A < B <= N) in\n"
+    "                        the pass-independent mode \"pppm\"; needs --partial\n"
+    "  --partial PATH        save the passes as a partial render (.ppmpart) instead of an\n"
+    "                        image (images only with -o); it is also the checkpoint, so\n"
+    "                        --resume PATH goes on with the missing passes of the range\n"
     "other:\n"
     "  -q, --quiet           no progress bar, no summary (errors are still printed)\n"
     "  --version             print the libppm version\n"
@@ -138,6 +144,17 @@ Options parse_options(int argc, char **argv) {
             o.checkpoint_interval = parse_number(arg, value(), 0);
         } else if (arg == "--resume") {
             o.resume = value();
+        } else if (arg == "--pass-range") {
+            const std::string text = value();
+            const std::size_t colon = text.find(':');
+            if (colon == std::string::npos)
+                throw UsageError("--pass-range needs A:B (passes A .. B-1), not '" + text + "'");
+            o.pass_first = parse_integer(arg, text.substr(0, colon).c_str(), 0, std::int64_t(1) << 32);
+            o.pass_end = parse_integer(arg, text.substr(colon + 1).c_str(), 1, std::int64_t(1) << 32);
+            if (o.pass_first >= o.pass_end)
+                throw UsageError("--pass-range " + text + " is empty: A must be below B (passes A .. B-1)");
+        } else if (arg == "--partial") {
+            o.partial = value();
         } else if (!arg.empty() && arg[0] == '-') {
             throw UsageError("unknown option '" + arg + "'");
         } else if (o.scene.empty()) {
@@ -148,6 +165,20 @@ Options parse_options(int argc, char **argv) {
     }
     if (o.help || o.version) return o;
     if (o.scene.empty()) throw UsageError("no scene file given");
+    if (o.pass_first >= 0 && !o.partial_render())
+        throw UsageError("--pass-range needs --partial PATH: the passes are saved as a partial render");
+    if (o.pass_first >= 0 && o.passes > 0 && o.pass_end > o.passes)
+        throw UsageError("--pass-range " + std::to_string(o.pass_first) + ":" + std::to_string(o.pass_end) +
+                         " goes beyond --passes " + std::to_string(o.passes));
+    if (o.partial_render()) {
+        for (const auto &[key, value] : o.settings)
+            if (key == "mode" && value != "pppm")
+                throw UsageError("--partial renders in mode pppm (pass-independent), not --set mode=" + value);
+        if (o.checkpoint_given)
+            throw UsageError("--partial PATH is the checkpoint of a partial render; --checkpoint is not needed");
+        o.checkpoint = o.partial;
+        return o;
+    }
     if (o.outputs.empty()) {
         std::string name = o.scene.substr(o.scene.rfind('/') == std::string::npos ? 0 : o.scene.rfind('/') + 1);
         const std::size_t dot = name.rfind('.');
