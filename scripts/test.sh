@@ -9,8 +9,9 @@
 # 3. Installs the Release build into a temporary prefix and checks the package: files, SONAME,
 #    exported symbols, and the examples/ consumer built against the installed library with
 #    find_package(ppm) and with pkg-config.
-# 4. Python: pip-installs bindings/python against that prefix into a temporary venv and runs
-#    its pytest tests (each test counts in the summary; a failed pip install counts as one).
+# 4. Python: pip-installs bindings/python (the package libppm) against that prefix into a
+#    temporary venv with Dask and Ray and runs its pytest tests (each test counts in the
+#    summary; a failed pip install counts as one).
 # 5. scripts/tsan.sh: the ThreadSanitizer build in build-tsan/ and the tests labelled
 #    "threads" under it, every report fatal (counts as one check); --no-tsan skips it.
 # Exits non-zero if anything failed; the last line sums up ctest tests and package checks.
@@ -148,7 +149,7 @@ fi
 # loading the copy's libppm (RUNPATH $ORIGIN/../lib).
 moved="$work/moved-prefix"
 cp -a "$prefix" "$moved"
-for tool in ppm-render ppm-tess ppm-bench; do
+for tool in ppm-render ppm-merge ppm-tess ppm-bench; do
   binary="$moved/bin/$tool"
   loaded=$(env -u LD_LIBRARY_PATH ldd "$binary" 2>/dev/null | awk '$1 == "libppm.so.0" { print $3 }')
   if [[ "$(readlink -f "$loaded")" == "$(readlink -f "$moved/lib/libppm.so.0")" ]] &&
@@ -254,8 +255,12 @@ python=${PPM_PYTHON:-/usr/bin/python3}
 venv="$work/venv"
 # The build requirements from PyPI once, then the package built without isolation against
 # the installed libppm (found through CMAKE_PREFIX_PATH, loaded through an rpath).
+# The render-farm engines too (the package's [dask] and [ray] extras); a test whose engine
+# cannot be installed is skipped and says why.
 if "$python" -m venv --system-site-packages "$venv" &&
   "$venv/bin/pip" install -q "scikit-build-core>=0.10" "nanobind>=2.0" &&
+  { "$venv/bin/pip" install -q "dask[distributed]" tqdm ray ||
+    echo "warning: the render-farm engines (dask, ray) could not be installed"; } &&
   CMAKE_PREFIX_PATH="$prefix" CMAKE_BUILD_PARALLEL_LEVEL="$PPM_JOBS" \
     "$venv/bin/pip" install --no-build-isolation ./bindings/python >"$work/pip.log" 2>&1; then
   # From the repository root, so that bindings/python/ppm does not shadow the installed package.

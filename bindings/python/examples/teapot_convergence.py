@@ -19,7 +19,7 @@ import sys
 
 import numpy as np
 
-import ppm
+import libppm
 
 REPO = pathlib.Path(__file__).resolve().parents[3]
 TEAPOT = REPO / "tests" / "data" / "teapot.bpt"
@@ -28,7 +28,7 @@ TEAPOT = REPO / "tests" / "data" / "teapot.bpt"
 def build_scene(teapot_path):
     """A 10 x 10 x 10 box (z up, open towards -y) with red and green side walls, the teapot
     on the floor and a 3 x 3 area light under the ceiling."""
-    scene = ppm.Scene()
+    scene = libppm.Scene()
     white = scene.add_diffuse_material(0.75)
     red = scene.add_diffuse_material((0.63, 0.065, 0.05))
     green = scene.add_diffuse_material((0.14, 0.45, 0.091))
@@ -52,9 +52,9 @@ def build_scene(teapot_path):
 
 
 def make_renderer(scene, args, seed):
-    camera = ppm.Camera(origin=(0, -19, 5), target=(0, 0, 4), up=(0, 0, 1), fov=38,
+    camera = libppm.Camera(origin=(0, -19, 5), target=(0, 0, 4), up=(0, 0, 1), fov=38,
                         width=args.width, height=args.height)
-    return ppm.Renderer(scene, camera, photons_per_pass=args.photons, seed=seed)
+    return libppm.Renderer(scene, camera, photons_per_pass=args.photons, seed=seed)
 
 
 def relative_rms(image, reference):
@@ -140,7 +140,7 @@ def main():
     parser.add_argument("--teapot", default=str(TEAPOT), help=".bpt file")
     args = parser.parse_args()
 
-    ppm.default_context().threads = args.threads
+    libppm.default_context().threads = args.threads
     with build_scene(args.teapot) as scene:
         points, image, _ = run(scene, args)
     plot(points, image, args)

@@ -1,6 +1,6 @@
 // Array arguments as the C API reads them: C-contiguous, on the CPU. The Python layer has
 // already converted and shape-checked them; require_size() guards the pointer arithmetic
-// for callers of ppm._core itself.
+// for callers of libppm._core itself.
 #pragma once
 
 #include "status.h"

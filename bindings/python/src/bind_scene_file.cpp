@@ -1,6 +1,6 @@
 // JSON scene files (docs/scene-format.md). Declared in ppm.h before libppm implemented them:
 // compiled only when the libppm this module links has them (CMakeLists.txt checks), and
-// ppm._core.has_scene_files says which.
+// libppm._core.has_scene_files says which.
 #include "camera.h"
 #include "objects.h"
 

@@ -1,5 +1,5 @@
 // ppm_camera_v2 as it crosses to Python: a tuple (origin, target, up, fov, width, height,
-// aperture_radius, focus_distance, near_clip), which ppm/camera.py turns into ppm.Camera.
+// aperture_radius, focus_distance, near_clip), which libppm/camera.py turns into libppm.Camera.
 #pragma once
 
 #include <ppm/ppm.h>

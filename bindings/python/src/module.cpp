@@ -1,10 +1,10 @@
-// ppm._core: a thin typed mirror of <ppm/ppm.h>. See objects.h.
+// libppm._core: a thin typed mirror of <ppm/ppm.h>. See objects.h.
 #include "objects.h"
 
 namespace nb = nanobind;
 
 NB_MODULE(_core, m) {
-    m.doc() = "Low-level bindings of the libppm C API; use the ppm package instead.";
+    m.doc() = "Low-level bindings of the libppm C API; use the libppm package instead.";
     ppm_py::register_errors(m);
     m.def("version", [] { return ppm_version(); });
     m.def("version_string", [] { return ppm_version_string(); });
@@ -15,4 +15,5 @@ NB_MODULE(_core, m) {
     ppm_py::bind_mesh(m);
     ppm_py::bind_renderer(m);
     ppm_py::bind_scene_file(m);
+    ppm_py::bind_partial(m);
 }

@@ -9,7 +9,7 @@ namespace {
 // Looked up on every error rather than cached: errors are rare and this way no Python object
 // outlives the interpreter in a static.
 void raise(const char *class_name, const char *message, int status) {
-    nb::object errors = nb::module_::import_("ppm._errors");
+    nb::object errors = nb::module_::import_("libppm._errors");
     nb::object cls = status < 0 ? errors.attr(class_name) : errors.attr("_class_for_status")(status);
     nb::object exc = cls(nb::str(message), status < 0 ? nb::none() : nb::cast(status));
     PyErr_SetObject(cls.ptr(), exc.ptr());

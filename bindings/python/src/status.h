@@ -3,7 +3,7 @@
 // Every wrapper calls check() right after its C call, on the same thread, so that
 // ppm_last_error_message() (per thread, valid until the next ppm_* call) is still the message
 // of that call. The C++ exception carries the message to nanobind's exception translator,
-// which raises the matching class of ppm._errors with the GIL held.
+// which raises the matching class of libppm._errors with the GIL held.
 #pragma once
 
 #include <ppm/ppm.h>
@@ -39,7 +39,7 @@ inline void check(ppm_status status) {
     throw StatusError(status, message);
 }
 
-// Registers the translator; ppm._errors must be importable (ppm/__init__.py imports it first).
+// Registers the translator; libppm._errors must be importable (libppm/__init__.py imports it first).
 void register_errors(nanobind::module_ &m);
 
 } // namespace ppm_py

@@ -4,7 +4,7 @@ import pathlib
 import numpy as np
 import pytest
 
-import ppm
+import libppm
 
 REPO = pathlib.Path(__file__).resolve().parents[3]
 TEAPOT = REPO / "tests" / "data" / "teapot.bpt"
@@ -49,5 +49,5 @@ def teapot_points():
 
 @pytest.fixture
 def scene():
-    with ppm.Scene() as s:
+    with libppm.Scene() as s:
         yield s

@@ -5,28 +5,28 @@ import threading
 import numpy as np
 import pytest
 
-import ppm
+import libppm
 
 from conftest import TEAPOT
 
 
 def test_status_classes_carry_status_and_message(scene):
-    with pytest.raises(ppm.InvalidArgumentError) as info:
+    with pytest.raises(libppm.InvalidArgumentError) as info:
         scene.add_sphere((0, 0, 0), -1.0)
     e = info.value
-    assert e.status == ppm.Status.INVALID_ARGUMENT
-    assert isinstance(e, ppm.Error) and isinstance(e, ValueError)
+    assert e.status == libppm.Status.INVALID_ARGUMENT
+    assert isinstance(e, libppm.Error) and isinstance(e, ValueError)
     assert "radius" in e.message and str(e) == e.message
 
 
 def test_query_before_commit_is_invalid_operation(scene):
     scene.add_sphere((0, 0, 0), 1.0)
-    with pytest.raises(ppm.InvalidOperationError, match="commit"):
+    with pytest.raises(libppm.InvalidOperationError, match="commit"):
         scene.intersect((0, 0, -5), (0, 0, 1))
 
 
 def test_empty_scene_commit(scene):
-    with pytest.raises(ppm.InvalidOperationError):
+    with pytest.raises(libppm.InvalidOperationError):
         scene.commit()
 
 
@@ -59,11 +59,11 @@ def test_convertible_input_is_accepted(scene, teapot_points):
 def test_nan_and_inf_go_to_the_library(scene, teapot_points):
     points = teapot_points.copy()
     points[3, 5, 1] = np.nan
-    with pytest.raises(ppm.InvalidArgumentError, match="patch 3"):
+    with pytest.raises(libppm.InvalidArgumentError, match="patch 3"):
         scene.add_bezier_patches(points)
-    with pytest.raises(ppm.InvalidArgumentError):
+    with pytest.raises(libppm.InvalidArgumentError):
         scene.add_sphere((0, np.inf, 0), 1.0)
-    with pytest.raises(ppm.InvalidArgumentError):
+    with pytest.raises(libppm.InvalidArgumentError):
         scene.add_quad((0, 0, 0), (1, 0, 0), (np.nan, 1, 0))
     # A failed add leaves the scene unchanged: the next id is still 0.
     assert scene.add_sphere((0, 0, 0), 1.0) == 0
@@ -75,11 +75,11 @@ def test_nan_rays_name_the_first_bad_index(scene):
     origins = np.zeros((5, 3))
     origins[:, 2] = -5
     origins[3, 0] = np.nan
-    with pytest.raises(ppm.InvalidArgumentError, match="ray 3"):
+    with pytest.raises(libppm.InvalidArgumentError, match="ray 3"):
         scene.intersect(origins, (0, 0, 1))
-    with pytest.raises(ppm.InvalidArgumentError):
+    with pytest.raises(libppm.InvalidArgumentError):
         scene.occluded((0, 0, -5), (0, 0, 0))
-    with pytest.raises(ppm.InvalidArgumentError):
+    with pytest.raises(libppm.InvalidArgumentError):
         scene.intersect((0, 0, -5), (0, 0, 1), tnear=2.0, tfar=1.0)
 
 
@@ -102,7 +102,7 @@ def test_mesh_argument_checks(scene):
         scene.add_mesh(positions, [[0, 1, -2]])
     with pytest.raises(ValueError, match=r"normals: expected shape \(3, 3\)"):
         scene.add_mesh(positions, [[0, 1, 2]], normals=np.zeros((2, 3)))
-    with pytest.raises(ppm.InvalidArgumentError, match="triangle 0 uses vertex 7"):
+    with pytest.raises(libppm.InvalidArgumentError, match="triangle 0 uses vertex 7"):
         scene.add_mesh(positions, [[0, 1, 7]])
 
 
@@ -112,62 +112,62 @@ def test_ids_must_be_uint32(scene):
         scene.set_material(-1, 0)
     with pytest.raises(TypeError, match="material_id"):
         scene.set_material(0, "glass")
-    with pytest.raises(ppm.InvalidArgumentError):
+    with pytest.raises(libppm.InvalidArgumentError):
         scene.set_material(5, 0)
 
 
 def test_files(scene, tmp_path):
-    with pytest.raises(ppm.FileError, match="nothing.bpt"):
+    with pytest.raises(libppm.FileError, match="nothing.bpt"):
         scene.load_bpt(tmp_path / "nothing.bpt")
     bad = tmp_path / "bad.bpt"
     bad.write_text("1\n3 3\n0 0 0\n")
-    with pytest.raises(ppm.ParseError, match="bad.bpt"):
+    with pytest.raises(libppm.ParseError, match="bad.bpt"):
         scene.load_bpt(bad)
-    with pytest.raises(ppm.FileError):
+    with pytest.raises(libppm.FileError):
         scene.load_obj(tmp_path / "nothing.obj")
 
 
 def test_unknown_settings(scene):
-    with pytest.raises(ppm.InvalidArgumentError, match="colour"):
+    with pytest.raises(libppm.InvalidArgumentError, match="colour"):
         scene.set("colour", 1.0)
-    with pytest.raises(ppm.InvalidArgumentError):
+    with pytest.raises(libppm.InvalidArgumentError):
         scene.tolerance = 1.0
-    with pytest.raises(ppm.InvalidArgumentError, match="speed"):
-        ppm.Context().set("speed", 3)
+    with pytest.raises(libppm.InvalidArgumentError, match="speed"):
+        libppm.Context().set("speed", 3)
 
 
 def test_use_after_close_is_a_clear_error():
-    scene = ppm.Scene()
+    scene = libppm.Scene()
     scene.add_sphere((0, 0, 0), 1.0)
     scene.close()
     scene.close()  # idempotent
     assert scene.closed
     for call in (scene.commit, lambda: scene.add_sphere((0, 0, 0), 1.0),
                  lambda: scene.intersect((0, 0, -5), (0, 0, 1)), lambda: scene.bounds):
-        with pytest.raises(ppm.ClosedError, match="Scene is closed"):
+        with pytest.raises(libppm.ClosedError, match="Scene is closed"):
             call()
-    assert issubclass(ppm.ClosedError, ppm.Error) and issubclass(ppm.ClosedError, ValueError)
+    assert issubclass(libppm.ClosedError, libppm.Error) and issubclass(libppm.ClosedError, ValueError)
 
 
 def test_context_manager_closes():
-    with ppm.Context(threads=1) as ctx:
+    with libppm.Context(threads=1) as ctx:
         assert ctx.threads == 1
     assert ctx.closed
-    with pytest.raises(ppm.ClosedError):
+    with pytest.raises(libppm.ClosedError):
         ctx.threads
-    with pytest.raises(ppm.ClosedError):
-        ppm.Scene(ctx)
+    with pytest.raises(libppm.ClosedError):
+        libppm.Scene(ctx)
 
 
 def test_children_keep_parents_alive():
-    ctx = ppm.Context(threads=2)
-    scene = ppm.Scene(ctx)
+    ctx = libppm.Context(threads=2)
+    scene = libppm.Scene(ctx)
     scene.load_bpt(TEAPOT)
     scene.add_point_light((0, -5, 5), 10)
     ctx.close()
     scene.commit()  # the C scene holds its context
-    camera = ppm.Camera(origin=(0, -10, 2), target=(0, 0, 1.5), up=(0, 0, 1), width=8, height=8)
-    renderer = ppm.Renderer(scene, camera, photons_per_pass=1000)
+    camera = libppm.Camera(origin=(0, -10, 2), target=(0, 0, 1.5), up=(0, 0, 1), width=8, height=8)
+    renderer = libppm.Renderer(scene, camera, photons_per_pass=1000)
     scene.close()
     del scene
     gc.collect()
@@ -181,10 +181,10 @@ def test_errors_are_per_thread():
     messages = {}
 
     def fail(name, radius):
-        with ppm.Scene() as s:
+        with libppm.Scene() as s:
             try:
                 s.add_sphere((0, 0, 0), radius)
-            except ppm.InvalidArgumentError as e:
+            except libppm.InvalidArgumentError as e:
                 messages[name] = e.message
 
     threads = [threading.Thread(target=fail, args=(n, r)) for n, r in (("a", -1.0), ("b", np.nan))]

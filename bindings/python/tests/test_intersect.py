@@ -3,7 +3,7 @@ against an independent numpy model of the patches."""
 import numpy as np
 import pytest
 
-import ppm
+import libppm
 
 from conftest import TEAPOT, bezier
 
@@ -59,7 +59,7 @@ def test_quad_against_closed_form(scene):
     # Outside the parallelogram: misses, marked as documented.
     miss = scene.intersect(origin - 0.5 * eu + normal, -normal)
     assert miss.t == np.inf and not miss.hit
-    assert miss.geom_id == ppm.INVALID_ID == 0xFFFFFFFF and miss.prim_id == ppm.INVALID_ID
+    assert miss.geom_id == libppm.INVALID_ID == 0xFFFFFFFF and miss.prim_id == libppm.INVALID_ID
 
 
 def test_triangle_mesh_barycentrics_and_shading_normals(scene):
@@ -180,7 +180,7 @@ def test_teapot_first_hits_at_known_surface_points(scene, teapot_points):
 
 
 def test_bpt_file_and_array_give_the_same_hits(teapot_points):
-    with ppm.Scene() as a, ppm.Scene() as b:
+    with libppm.Scene() as a, libppm.Scene() as b:
         a.load_bpt(TEAPOT)
         b.add_bezier_patches(teapot_points)
         a.commit()
@@ -202,7 +202,7 @@ def test_obj_file(scene, tmp_path):
 
 
 def test_large_batch_on_worker_threads(teapot_points):
-    with ppm.Context(threads=2) as ctx, ppm.Scene(ctx) as s:
+    with libppm.Context(threads=2) as ctx, libppm.Scene(ctx) as s:
         s.add_bezier_patches(teapot_points)
         s.commit()
         targets = rng.uniform(-2, 2, size=(100_000, 3)) + (0, 0, 1.5)
@@ -225,5 +225,5 @@ def test_bezier_patches_come_back_in_world_space(scene, teapot_points):
     assert world.shape == (len(points), 16, 3) and world.dtype == np.float64
     expected = points @ m[:3, :3].T + m[:3, 3]
     np.testing.assert_allclose(world, expected, rtol=0, atol=1e-12)
-    with pytest.raises(ppm.InvalidArgumentError, match="patch"):
+    with pytest.raises(libppm.InvalidArgumentError, match="patch"):
         scene.bezier_patches(sphere)

@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-import ppm
+import libppm
 
 from conftest import TEAPOT
 
@@ -26,14 +26,14 @@ def test_texture_replaces_the_reflectance(tmp_path):
     texel = np.array([255, 128, 0])
     png = tmp_path / "texel.png"
     write_png(png, texel[None, None, :])
-    with ppm.Scene() as scene:
+    with libppm.Scene() as scene:
         material = scene.add_diffuse_material(0.3)
         scene.set_texture(material, png, scale=(2, 2), offset=(0.1, 0))
         scene.add_quad((-2, -2, 0), (4, 0, 0), (0, 4, 0), material=material)
         scene.add_point_light((0, 0, 1), 2.0)
         scene.commit()
-        camera = ppm.Camera(origin=(0, 0, 3), target=(0, 0, 0), fov=10, width=5, height=5)
-        with ppm.Renderer(scene, camera, photons_per_pass=1000) as r:
+        camera = libppm.Camera(origin=(0, 0, 3), target=(0, 0, 0), fov=10, width=5, height=5)
+        with libppm.Renderer(scene, camera, photons_per_pass=1000) as r:
             centre = r.render(2)[2, 2]
     np.testing.assert_allclose(centre, srgb_to_linear(texel) / math.pi * 2.0, rtol=0.01, atol=1e-6)
 
@@ -41,15 +41,15 @@ def test_texture_replaces_the_reflectance(tmp_path):
 def test_texture_errors(scene, tmp_path):
     glass = scene.add_dielectric_material()
     diffuse = scene.add_diffuse_material()
-    with pytest.raises(ppm.FileError, match="missing.png"):
+    with pytest.raises(libppm.FileError, match="missing.png"):
         scene.set_texture(diffuse, tmp_path / "missing.png")
     png = tmp_path / "t.png"
     write_png(png, np.zeros((2, 2, 3)))
-    with pytest.raises(ppm.InvalidArgumentError):
+    with pytest.raises(libppm.InvalidArgumentError):
         scene.set_texture(glass, png)
     with pytest.raises(ValueError, match="scale"):
         scene.set_texture(diffuse, png, scale=(1, 1, 1))
-    with pytest.raises(ppm.InvalidArgumentError):
+    with pytest.raises(libppm.InvalidArgumentError):
         scene.set_texture(diffuse, png, scale=(0, 1))
 
 
@@ -64,40 +64,40 @@ def test_patch_uv_rects(scene):
         scene.set_patch_uv_rects(teapot, rects[:, :3])
     bad = rects.copy()
     bad[4, 2] = np.nan
-    with pytest.raises(ppm.InvalidArgumentError):
+    with pytest.raises(libppm.InvalidArgumentError):
         scene.set_patch_uv_rects(teapot, bad)
-    with pytest.raises(ppm.InvalidArgumentError):
+    with pytest.raises(libppm.InvalidArgumentError):
         scene.set_patch_uv_rects(sphere, [[0, 0, 1, 1]])
 
 
 def test_material_and_light_values_are_checked(scene):
     assert [scene.add_diffuse_material((0.2, 0.4, 0.6)), scene.add_mirror_material(),
             scene.add_coated_material(0.5, int_ior=1.49), scene.add_dielectric_material(1.33)] == [0, 1, 2, 3]
-    with pytest.raises(ppm.InvalidArgumentError, match="reflectance"):
+    with pytest.raises(libppm.InvalidArgumentError, match="reflectance"):
         scene.add_diffuse_material(1.5)
     with pytest.raises(ValueError, match="reflectance"):
         scene.add_diffuse_material((0.1, 0.2))
-    with pytest.raises(ppm.InvalidArgumentError):
+    with pytest.raises(libppm.InvalidArgumentError):
         scene.add_dielectric_material(-1.0)
-    with pytest.raises(ppm.InvalidArgumentError):
+    with pytest.raises(libppm.InvalidArgumentError):
         scene.add_spot_light((0, 0, 1), (0, 0, 0), 1.0, cutoff_angle=10, beam_width=20)
     assert scene.add_spot_light((0, 0, 1), (0, 0, 0), (1, 2, 3)) == 0
     assert scene.add_point_light((0, 0, 1), 1.0) == 1
     mesh = scene.add_mesh([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
-    with pytest.raises(ppm.InvalidArgumentError):
+    with pytest.raises(libppm.InvalidArgumentError):
         scene.set_emission(mesh, 1.0)
     quad = scene.add_quad((0, 0, 0), (1, 0, 0), (0, 1, 0))
-    with pytest.raises(ppm.InvalidArgumentError):
+    with pytest.raises(libppm.InvalidArgumentError):
         scene.set_emission(quad, -1.0)
 
 
 def test_area_light_seen_directly():
     """A camera looking at the emitting side of a quad light sees its radiance."""
-    with ppm.Scene() as scene:
+    with libppm.Scene() as scene:
         light = scene.add_quad((-5, -5, 0), (10, 0, 0), (0, 10, 0))  # normal +z
         scene.set_emission(light, (1.0, 2.0, 3.0))
         scene.commit()
-        camera = ppm.Camera(origin=(0, 0, 2), target=(0, 0, 0), fov=30, width=6, height=4)
-        with ppm.Renderer(scene, camera, photons_per_pass=1000) as r:
+        camera = libppm.Camera(origin=(0, 0, 2), target=(0, 0, 0), fov=30, width=6, height=4)
+        with libppm.Renderer(scene, camera, photons_per_pass=1000) as r:
             image = r.render(1)
     np.testing.assert_allclose(image.reshape(-1, 3).mean(axis=0), [1, 2, 3], rtol=1e-5)

@@ -1,19 +1,19 @@
 """Scene files and checkpoints. libppm declared these before implementing them: the tests
-skip when the libppm the module was built against lacks them (ppm._has_scene_files,
-ppm._has_checkpoints)."""
+skip when the libppm the module was built against lacks them (libppm._has_scene_files,
+libppm._has_checkpoints)."""
 import json
 
 import numpy as np
 import pytest
 
-import ppm
+import libppm
 
 from conftest import TEAPOT
 
 needs_scene_files = pytest.mark.skipif(
-    not ppm._has_scene_files, reason="libppm built without scene files (ppm_scene_file_load)")
+    not libppm._has_scene_files, reason="libppm built without scene files (ppm_scene_file_load)")
 needs_checkpoints = pytest.mark.skipif(
-    not ppm._has_checkpoints, reason="libppm built without checkpoints (ppm_renderer_save_checkpoint)")
+    not libppm._has_checkpoints, reason="libppm built without checkpoints (ppm_renderer_save_checkpoint)")
 
 
 def write_scene(folder, **integrator):
@@ -43,7 +43,7 @@ def write_scene(folder, **integrator):
 @needs_scene_files
 def test_load_scene_file(tmp_path):
     path = write_scene(tmp_path, passes=3, time=1.5)
-    with ppm.load(path) as f:
+    with libppm.load(path) as f:
         assert f.passes == 3 and f.time == 1.5
         assert f.get_int("passes") == 3
         cam = f.camera
@@ -59,31 +59,31 @@ def test_load_scene_file(tmp_path):
 
 @needs_scene_files
 def test_scene_file_errors(tmp_path):
-    with pytest.raises(ppm.FileError):
-        ppm.load(tmp_path / "missing.json")
+    with pytest.raises(libppm.FileError):
+        libppm.load(tmp_path / "missing.json")
     bad = tmp_path / "bad.json"
     bad.write_text('{"version": 1, "shapes": [{"type": "sphere", "radius": -1}]}')
-    with pytest.raises(ppm.ParseError, match="radius"):
-        ppm.load(bad)
+    with pytest.raises(libppm.ParseError, match="radius"):
+        libppm.load(bad)
 
 
 @needs_scene_files
 def test_scene_outlives_its_file(tmp_path):
-    f = ppm.load(write_scene(tmp_path))
+    f = libppm.load(write_scene(tmp_path))
     scene = f.scene
     f.close()
     assert scene.intersect((0, 1, 6.8), (0, -0.2, -1)).hit
 
 
 def small_renderer(scene, **settings):
-    camera = ppm.Camera(origin=(0, -8, 3), target=(0, 0, 1.5), up=(0, 0, 1), fov=40,
+    camera = libppm.Camera(origin=(0, -8, 3), target=(0, 0, 1.5), up=(0, 0, 1), fov=40,
                         width=16, height=12)
-    return ppm.Renderer(scene, camera, photons_per_pass=3000, seed=4, **settings)
+    return libppm.Renderer(scene, camera, photons_per_pass=3000, seed=4, **settings)
 
 
 @pytest.fixture
 def teapot_scene():
-    with ppm.Scene() as s:
+    with libppm.Scene() as s:
         s.load_bpt(TEAPOT, material=s.add_diffuse_material(0.7))
         s.add_point_light((2, -4, 6), 40)
         s.commit()
@@ -108,26 +108,26 @@ def test_checkpoint_resumes_bit_for_bit(tmp_path, teapot_scene):
 @needs_checkpoints
 def test_checkpoint_errors(tmp_path, teapot_scene):
     with small_renderer(teapot_scene) as r:
-        with pytest.raises(ppm.FileError):
+        with pytest.raises(libppm.FileError):
             r.load_checkpoint(tmp_path / "missing.ckpt")
         junk = tmp_path / "junk.ckpt"
         junk.write_bytes(b"not a checkpoint")
-        with pytest.raises(ppm.ParseError):
+        with pytest.raises(libppm.ParseError):
             r.load_checkpoint(junk)
         r.render_pass()
         r.save_checkpoint(tmp_path / "one.ckpt")
-        with pytest.raises(ppm.InvalidOperationError):
+        with pytest.raises(libppm.InvalidOperationError):
             r.load_checkpoint(tmp_path / "one.ckpt")
     with small_renderer(teapot_scene, direct_lighting=0) as other:
-        with pytest.raises(ppm.InvalidArgumentError):
+        with pytest.raises(libppm.InvalidArgumentError):
             other.load_checkpoint(tmp_path / "one.ckpt")
 
 
 def test_missing_features_raise_clear_errors(tmp_path, teapot_scene):
     """Without the library functions the Python methods exist and say why they fail."""
-    if not ppm._has_checkpoints:
-        with small_renderer(teapot_scene) as r, pytest.raises(ppm.Error, match="checkpoints"):
+    if not libppm._has_checkpoints:
+        with small_renderer(teapot_scene) as r, pytest.raises(libppm.Error, match="checkpoints"):
             r.save_checkpoint(tmp_path / "x.ckpt")
-    if not ppm._has_scene_files:
-        with pytest.raises(ppm.Error, match="scene files"):
-            ppm.load(tmp_path / "scene.json")
+    if not libppm._has_scene_files:
+        with pytest.raises(libppm.Error, match="scene files"):
+            libppm.load(tmp_path / "scene.json")

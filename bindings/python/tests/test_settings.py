@@ -2,7 +2,7 @@
 are accepted for integer keys, and wrong types and unknown keys are clear errors."""
 import pytest
 
-import ppm
+import libppm
 
 
 def test_patch_presplit_is_an_int(scene):
@@ -21,9 +21,9 @@ def test_tolerance_is_a_float(scene):
 
 
 def test_patch_presplit_errors(scene):
-    with pytest.raises(ppm.InvalidArgumentError, match="whole number"):
+    with pytest.raises(libppm.InvalidArgumentError, match="whole number"):
         scene.set("patch_presplit", 2.5)
-    with pytest.raises(ppm.InvalidArgumentError, match="patch_presplit"):
+    with pytest.raises(libppm.InvalidArgumentError, match="patch_presplit"):
         scene.patch_presplit = 33
     with pytest.raises(TypeError, match="patch_presplit"):
         scene.patch_presplit = 2.0
@@ -33,11 +33,11 @@ def test_patch_presplit_errors(scene):
 
 
 def test_scene_unknown_key_and_wrong_type(scene):
-    with pytest.raises(ppm.InvalidArgumentError,
+    with pytest.raises(libppm.InvalidArgumentError,
                        match=r"unknown scene setting 'presplit' \(known: tolerance \(double\), "
                              r"patch_presplit \(int\)\)"):
         scene.get("presplit")
-    with pytest.raises(ppm.InvalidArgumentError, match="unknown scene setting 'colour'"):
+    with pytest.raises(libppm.InvalidArgumentError, match="unknown scene setting 'colour'"):
         scene.set("colour", 3)
     with pytest.raises(TypeError, match="expected int or float"):
         scene.set("tolerance", "1e-6")
@@ -55,12 +55,12 @@ def test_patch_presplit_reaches_the_commit(scene):
 
 
 def test_context_settings_through_floats():
-    with ppm.Context() as context:
+    with libppm.Context() as context:
         context.set("threads", 2.0)
         assert context.get("threads") == 2 and context.threads == 2
-        with pytest.raises(ppm.InvalidArgumentError, match="threads"):
+        with pytest.raises(libppm.InvalidArgumentError, match="threads"):
             context.set("threads", 1.5)
-        with pytest.raises(ppm.InvalidArgumentError, match="unknown context setting 'speed'"):
+        with pytest.raises(libppm.InvalidArgumentError, match="unknown context setting 'speed'"):
             context.set("speed", 1.0)
         with pytest.raises(TypeError):
             context.set("threads", "2")

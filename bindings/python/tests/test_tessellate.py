@@ -2,13 +2,13 @@
 import numpy as np
 import pytest
 
-import ppm
+import libppm
 
 from conftest import bezier
 
 
 def test_uniform_grid_shapes_and_vertices_on_the_surface(teapot_points):
-    mesh = ppm.tessellate(teapot_points, grid=4)
+    mesh = libppm.tessellate(teapot_points, grid=4)
     n = len(teapot_points)
     assert mesh.triangles.shape == (2 * 4 * 4 * n, 3) and mesh.triangles.dtype == np.uint32
     v = mesh.vertices.shape[0]
@@ -30,7 +30,7 @@ def test_uniform_grid_shapes_and_vertices_on_the_surface(teapot_points):
 
 
 def test_arrays_are_read_only_and_outlive_the_mesh(teapot_points):
-    mesh = ppm.tessellate(teapot_points[:2], grid=2)
+    mesh = libppm.tessellate(teapot_points[:2], grid=2)
     with pytest.raises(ValueError):
         mesh.vertices[0, 0] = 1.0
     vertices = mesh.vertices
@@ -48,7 +48,7 @@ def deviation_along_normals(points, mesh):
     keep = area2 > 1e-12
     normal = normal[keep] / area2[keep, None]
     centroid = centroid[keep]
-    with ppm.Scene() as scene:
+    with libppm.Scene() as scene:
         scene.add_bezier_patches(points)
         scene.commit()
         reach = 0.05
@@ -60,7 +60,7 @@ def deviation_along_normals(points, mesh):
 
 @pytest.mark.parametrize("tolerance", [1e-2, 1e-3])
 def test_adaptive_deviation_within_tolerance(teapot_points, tolerance):
-    mesh = ppm.tessellate(teapot_points, tolerance=tolerance)
+    mesh = libppm.tessellate(teapot_points, tolerance=tolerance)
     assert mesh.tolerance == tolerance
     assert 0 < mesh.max_deviation <= tolerance
     t = deviation_along_normals(teapot_points, mesh)
@@ -71,7 +71,7 @@ def test_adaptive_deviation_within_tolerance(teapot_points, tolerance):
 
 
 def test_uniform_deviation_falls_with_the_grid(teapot_points):
-    deviations = [ppm.tessellate(teapot_points, grid=g).max_deviation for g in (4, 8, 16)]
+    deviations = [libppm.tessellate(teapot_points, grid=g).max_deviation for g in (4, 8, 16)]
     assert deviations[0] > deviations[1] > deviations[2] > 0
     # Second order: doubling the grid divides the deviation by about 4.
     assert 2.5 < deviations[1] / deviations[2] < 6
@@ -79,20 +79,20 @@ def test_uniform_deviation_falls_with_the_grid(teapot_points):
 
 def test_argument_errors(teapot_points):
     with pytest.raises(TypeError, match="exactly one"):
-        ppm.tessellate(teapot_points)
+        libppm.tessellate(teapot_points)
     with pytest.raises(TypeError, match="exactly one"):
-        ppm.tessellate(teapot_points, tolerance=1e-3, grid=4)
+        libppm.tessellate(teapot_points, tolerance=1e-3, grid=4)
     with pytest.raises(ValueError, match="control_points"):
-        ppm.tessellate(teapot_points[:, :8], grid=4)
+        libppm.tessellate(teapot_points[:, :8], grid=4)
     with pytest.raises(ValueError, match="grid"):
-        ppm.tessellate(teapot_points, grid=-1)
-    with pytest.raises(ppm.InvalidArgumentError):
-        ppm.tessellate(teapot_points, tolerance=-1.0)
-    with pytest.raises(ppm.InvalidArgumentError):
-        ppm.tessellate(teapot_points, grid=5000)
+        libppm.tessellate(teapot_points, grid=-1)
+    with pytest.raises(libppm.InvalidArgumentError):
+        libppm.tessellate(teapot_points, tolerance=-1.0)
+    with pytest.raises(libppm.InvalidArgumentError):
+        libppm.tessellate(teapot_points, grid=5000)
     bad = teapot_points.copy()
     bad[1, 2, 0] = np.inf
-    with pytest.raises(ppm.InvalidArgumentError, match="patch 1"):
-        ppm.tessellate(bad, grid=2)
-    with pytest.raises(ppm.InvalidArgumentError):
-        ppm.tessellate(np.zeros((0, 16, 3)), grid=2)
+    with pytest.raises(libppm.InvalidArgumentError, match="patch 1"):
+        libppm.tessellate(bad, grid=2)
+    with pytest.raises(libppm.InvalidArgumentError):
+        libppm.tessellate(np.zeros((0, 16, 3)), grid=2)

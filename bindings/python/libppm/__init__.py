@@ -12,6 +12,7 @@ from . import _core
 from ._rays import HIT_DTYPE, RAY_DTYPE, Hits
 from .camera import Camera
 from .context import Context, default_context
+from .partial import Partial, check_image_path, write_image
 from .renderer import Renderer
 from .scene import Scene
 from .scene_file import SceneFile, load
@@ -37,6 +38,6 @@ __all__ = [
     "CancelledError", "ClosedError", "Error", "FileError", "InternalError",
     "InvalidArgumentError", "InvalidOperationError", "OutOfMemoryError", "ParseError", "Status",
     "UnsupportedError", "HIT_DTYPE", "RAY_DTYPE", "Hits", "Camera", "Context",
-    "default_context", "Renderer", "Scene", "SceneFile", "load", "Mesh", "tessellate",
+    "default_context", "Partial", "check_image_path", "write_image", "Renderer", "Scene", "SceneFile", "load", "Mesh", "tessellate",
     "INVALID_ID", "version",
 ]

@@ -35,7 +35,7 @@ class Hits:
     (hit point on the surface), ``p_error`` (bound on its distance from the exact point),
     ``ng`` (unit geometric normal as stored, not flipped towards the ray), ``ns`` (unit
     shading normal), ``geom_id``, ``prim_id``, ``material`` (uint32; ``geom_id`` and
-    ``prim_id`` are :data:`ppm.INVALID_ID` = 0xFFFFFFFF on a miss, ``material`` 0),
+    ``prim_id`` are :data:`libppm.INVALID_ID` = 0xFFFFFFFF on a miss, ``material`` 0),
     ``hit`` (bool mask).
     ``raw`` is the underlying ppm_hit structured array (1-D).
     """
@@ -56,4 +56,4 @@ class Hits:
         return self.shape[0] if self.shape else 1
 
     def __repr__(self):
-        return f"<ppm.Hits shape={self.shape} hits={int(self.hit.sum())}>"
+        return f"<libppm.Hits shape={self.shape} hits={int(self.hit.sum())}>"

@@ -18,17 +18,18 @@ _CAMERA_FIELDS = {f.name for f in dataclasses.fields(Camera)}
 class Renderer(Handle):
     """A progressive photon-mapping renderer of a committed scene seen through a camera.
 
-    >>> r = ppm.Renderer(scene, ppm.Camera(origin=(0, -5, 1), target=(0, 0, 1),
+    >>> r = libppm.Renderer(scene, libppm.Camera(origin=(0, -5, 1), target=(0, 0, 1),
     ...                  up=(0, 0, 1), fov=40, width=320, height=240), photons_per_pass=100000)
     >>> rgb = r.render(16)                 # (240, 320, 3) float32, linear radiance
 
     The camera may also be given as keyword arguments (the fields of :class:`Camera`),
     alone or overriding fields of ``camera``:
-    ``ppm.Renderer(scene, origin=(0, -5, 1), target=(0, 0, 1), up=(0, 0, 1), width=64,
+    ``libppm.Renderer(scene, origin=(0, -5, 1), target=(0, 0, 1), up=(0, 0, 1), width=64,
     height=48, seed=3)``.
 
     Settings (keyword arguments here, or :meth:`set` / :meth:`get`; see ppm.h):
-    ``mode`` ("sppm" | "ppm"), ``photons_per_pass``, ``alpha``, ``initial_radius``,
+    ``mode`` ("sppm" | "ppm" | "pppm": pass-independent, see :class:`libppm.Partial`),
+    ``photons_per_pass``, ``alpha``, ``initial_radius``,
     ``initial_radius_pixels``, ``max_depth``, ``seed``, ``hit_point_search``
     ("grid" | "kdtree"), ``direct_lighting`` (1: shadow rays, 0: photons only). mode, seed,
     direct_lighting and the initial radius are fixed after the first pass.
@@ -42,7 +43,7 @@ class Renderer(Handle):
         if camera is None:
             camera = Camera(**camera_fields)
         elif not isinstance(camera, Camera):
-            raise TypeError(f"camera: expected ppm.Camera, got {type(camera).__name__}")
+            raise TypeError(f"camera: expected libppm.Camera, got {type(camera).__name__}")
         elif camera_fields:
             camera = dataclasses.replace(camera, **camera_fields)
         self.scene = scene
@@ -115,7 +116,7 @@ class Renderer(Handle):
     def render_pass(self):
         """Runs one pass (eye pass, photon pass, statistics update) without the GIL.
 
-        Raises :class:`ppm.CancelledError` if :meth:`cancel` was called before or during
+        Raises :class:`libppm.CancelledError` if :meth:`cancel` was called before or during
         it (the pass is then discarded).
         """
         self._core_object.render_pass()
@@ -157,6 +158,20 @@ class Renderer(Handle):
         if elapsed is not None:
             stats["elapsed"] = elapsed
         return stats
+
+    def render_pass_index(self, index):
+        """Runs pass ``index`` of a pass-independent render (``mode="pppm"``), in any order;
+        :meth:`render_pass` there runs the lowest index not yet rendered."""
+        _core.render_pass_index(self._core_object, int(index))
+
+    def partial(self):
+        """The passes so far as a :class:`libppm.Partial` (``mode="pppm"``)."""
+        from .partial import Partial
+        return Partial(_core.renderer_partial(self._core_object))
+
+    def merge_partial(self, partial):
+        """Adds a :class:`libppm.Partial`'s passes to this renderer's (``mode="pppm"``)."""
+        _core.renderer_merge_partial(self._core_object, partial._core_object)
 
     def cancel(self):
         """Stops the running pass as soon as possible, or the next one. Thread safe."""

@@ -5,14 +5,14 @@ class Handle:
     """Base of the classes that own a libppm handle.
 
     ``close()`` drops this object's reference at once (also done when it is garbage
-    collected); calling a method afterwards raises :class:`ppm.ClosedError`. Children keep
+    collected); calling a method afterwards raises :class:`libppm.ClosedError`. Children keep
     what they need alive: a renderer works on after its scene and context are closed.
     """
 
     _core_object = None
 
     def close(self):
-        """Releases the handle; further calls raise :class:`ppm.ClosedError`. Idempotent."""
+        """Releases the handle; further calls raise :class:`libppm.ClosedError`. Idempotent."""
         if self._core_object is not None:
             self._core_object.close()
 
@@ -29,4 +29,4 @@ class Handle:
 
     def __repr__(self):
         state = "closed" if self.closed else "open"
-        return f"<ppm.{type(self).__name__} ({state})>"
+        return f"<libppm.{type(self).__name__} ({state})>"

@@ -14,7 +14,7 @@ class SceneFile(Handle):
     """A loaded JSON scene file: its committed :attr:`scene`, :attr:`camera` and render
     settings. Relative paths in the file are relative to its folder.
 
-    >>> with ppm.load("scene.json") as f:
+    >>> with libppm.load("scene.json") as f:
     ...     image = f.create_renderer().render(f.passes or 16)
     """
 

@@ -54,7 +54,7 @@ class OutOfMemoryError(Error, MemoryError):
     status = Status.OUT_OF_MEMORY
 
 
-class FileError(Error):
+class FileError(Error, OSError):
     """A file could not be opened, read or written (``PPM_ERROR_IO``)."""
 
     status = Status.IO

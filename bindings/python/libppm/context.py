@@ -12,8 +12,8 @@ class Context(Handle):
 
     Optional: scenes created without one share :func:`default_context`.
 
-    >>> ctx = ppm.Context(threads=2)
-    >>> scene = ppm.Scene(ctx)
+    >>> ctx = libppm.Context(threads=2)
+    >>> scene = libppm.Scene(ctx)
 
     ``threads``: worker threads for batch queries, scene builds and rendering; 0 (default)
     means all hardware threads.
@@ -61,5 +61,5 @@ def resolve(context):
     if context is None:
         return default_context()
     if not isinstance(context, Context):
-        raise TypeError(f"context: expected ppm.Context, got {type(context).__name__}")
+        raise TypeError(f"context: expected libppm.Context, got {type(context).__name__}")
     return context

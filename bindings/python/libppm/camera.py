@@ -28,7 +28,7 @@ class Camera:
     near_clip: float = 0.0
 
     def _as_tuple(self):
-        """The tuple ppm._core takes, checked."""
+        """The tuple libppm._core takes, checked."""
         size = []
         for name in ("width", "height"):
             value = getattr(self, name)

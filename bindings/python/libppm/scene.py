@@ -22,14 +22,14 @@ class Scene(Handle):
     lights are each numbered 0, 1, 2, ... in the order of addition). Geometry adds take an
     optional ``material`` id. After any change, :meth:`commit` before querying or rendering.
 
-    >>> scene = ppm.Scene()
+    >>> scene = libppm.Scene()
     >>> scene.add_sphere((0, 0, 0), 1.0)
     0
     >>> scene.commit()
     >>> scene.intersect((0, 0, -5), (0, 0, 1)).t
     array(4.)
 
-    ``context``: a :class:`ppm.Context`, default :func:`ppm.default_context`.
+    ``context``: a :class:`libppm.Context`, default :func:`libppm.default_context`.
     ``tolerance``: accuracy of hits relative to the scene's bounding-box diagonal
     (default 1e-9, range [1e-14, 1e-2]).
     """
@@ -171,7 +171,7 @@ class Scene(Handle):
     def bezier_patches(self, geom_id):
         """World-space control points of a committed patch geometry, its transform applied:
         float64 array ``(n, 16, 3)`` in the layout of :meth:`add_bezier_patches`.
-        Raises :class:`ppm.InvalidArgumentError` for a geometry that is not made of patches."""
+        Raises :class:`libppm.InvalidArgumentError` for a geometry that is not made of patches."""
         count = self.primitive_count(geom_id)
         out = np.empty((count, 16, 3), dtype=np.float64)
         self._core_object.get_bezier_patches(uint32(geom_id, "geom_id"), out)
@@ -248,9 +248,9 @@ class Scene(Handle):
 
         ``origins`` and ``directions`` have shape ``(..., 3)`` and broadcast against each
         other and against ``tnear`` / ``tfar`` (scalars or batch-shaped); directions need
-        not be unit length (t is in units of ``|direction|``). Returns :class:`ppm.Hits`
+        not be unit length (t is in units of ``|direction|``). Returns :class:`libppm.Hits`
         whose arrays have the broadcast batch shape. A miss has ``t = inf`` and ``geom_id``
-        = ``prim_id`` = :data:`ppm.INVALID_ID` (0xFFFFFFFF; the arrays are uint32). The
+        = ``prim_id`` = :data:`libppm.INVALID_ID` (0xFFFFFFFF; the arrays are uint32). The
         scene must be committed. Runs without the GIL, on the context's worker threads.
         """
         rays, shape = _rays.make_rays(origins, directions, tnear, tfar)

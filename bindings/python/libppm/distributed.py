@@ -1,0 +1,198 @@
+"""Render farms on Dask (or Ray): a render's passes in chunks, rendered as tasks anywhere,
+merged exactly into one image.
+
+The render runs in the pass-independent mode ("pppm"): pass ``i`` depends only on the scene,
+the settings and ``i``, and the merge of partial renders is exact (see
+:class:`libppm.Partial`), so the image of ``passes`` passes is the same bits as one process
+rendering them, however the chunks were split, ordered, retried or resumed.
+
+>>> from dask.distributed import Client
+>>> image = libppm.distributed.render("scene.json", passes=256, chunk_passes=8,
+...                                   client=Client("scheduler:8786"), output="image.exr",
+...                                   checkpoint="image.ppmpart", photons_per_pass=200000)
+
+Each task loads the scene file on its worker (once per worker process: later tasks reuse it),
+renders its chunk and returns the partial's bytes; the driver merges them as they arrive,
+rewrites ``output`` and ``checkpoint`` atomically after each merge, and shows a progress bar.
+A driver started again with the same ``checkpoint`` renders only the passes it lacks. The
+engine retries a failed task or a lost worker's task (``retries`` times); a retried chunk
+renders the same bits. The scene path must name the same file on every worker (a shared
+file system, or the same path on each machine).
+"""
+import os
+import time
+
+from .partial import Partial, check_image_path, write_image
+
+__all__ = ["render", "render_chunk"]
+
+# Scene files loaded by this worker process: (path, mtime, size) -> SceneFile.
+_scene_cache = {}
+
+
+def _scene_file(path):
+    from .scene_file import load
+    status = os.stat(path)
+    key = (path, status.st_mtime_ns, status.st_size)
+    scene_file = _scene_cache.get(key)
+    if scene_file is None:
+        for old in [k for k in _scene_cache if k[0] == path]:
+            _scene_cache.pop(old).close()
+        scene_file = _scene_cache[key] = load(path)
+    return scene_file
+
+
+def render_chunk(scene_path, first, end, settings, pass_total=0):
+    """Renders passes ``first .. end-1`` of the scene in "pppm" mode with ``settings`` (a
+    dict of render settings) and returns the partial render's bytes (a task's work; also
+    usable on its own). The scene file is loaded once per process."""
+    renderer = _scene_file(os.fspath(scene_path)).create_renderer(mode="pppm", **settings)
+    try:
+        for index in range(int(first), int(end)):
+            renderer.render_pass_index(index)
+        partial = renderer.partial()
+        partial.pass_total = pass_total
+        return partial.to_bytes()
+    finally:
+        renderer.close()
+
+
+class _DaskBackend:
+    def __init__(self, client, retries):
+        self.client, self.retries = client, retries
+
+    def submit(self, *args):
+        return self.client.submit(render_chunk, *args, retries=self.retries, pure=False)
+
+    def completed(self, futures):
+        from dask.distributed import as_completed
+        for future, result in as_completed(futures, with_results=True):
+            yield future, result
+
+    def cancel(self, futures):
+        self.client.cancel(list(futures))
+
+
+class _RayBackend:
+    def __init__(self, retries):
+        import ray
+        self.ray = ray
+        if not ray.is_initialized():
+            ray.init()
+        self.task = ray.remote(max_retries=retries, retry_exceptions=True)(render_chunk)
+
+    def submit(self, *args):
+        return self.task.remote(*args)
+
+    def completed(self, futures):
+        pending = list(futures)
+        while pending:
+            done, pending = self.ray.wait(pending, num_returns=1)
+            yield done[0], self.ray.get(done[0])
+
+    def cancel(self, futures):
+        for future in futures:
+            self.ray.cancel(future)
+
+
+def _chunks(missing, chunk_passes):
+    for first, end in missing:
+        for start in range(first, end, chunk_passes):
+            yield start, min(start + chunk_passes, end)
+
+
+def _write(merged, output, checkpoint, layers):
+    if checkpoint is not None:
+        merged.save(checkpoint)
+    if output is not None:
+        write_image(output, merged.image(), {name: merged.layer(name) for name in layers})
+
+
+def render(scene_path, passes, chunk_passes=None, client=None, ray=False, output=None,
+           checkpoint=None, progress=True, layers=(), retries=3, callback=None, **settings):
+    """Renders ``passes`` passes of a scene file on a Dask cluster (``client``, a
+    ``dask.distributed.Client``) or on Ray (``ray=True``; connects to a running cluster, or
+    starts a local one) and returns the image: float32 ``(H, W, 3)`` linear radiance.
+
+    ``chunk_passes``: passes per task (default: ``passes`` split into about 4 chunks per
+    worker, at least 1 pass each). ``output``: the image path, rewritten atomically after
+    each merge (EXR linear float with ``layers``, e.g. ``("radius", "photons")``; PNG or
+    JPEG sRGB). ``checkpoint``: a partial-render file holding the merged passes, rewritten
+    after each merge; an existing one is resumed. ``progress``: a tqdm progress bar (if tqdm
+    is installed). ``retries``: how often the engine retries a failed chunk. ``callback``:
+    called as ``callback(partial, (first, end))`` after each merge; returning ``False`` stops
+    (the checkpoint keeps the passes merged so far). Keyword ``settings`` override the
+    scene's integrator settings (``photons_per_pass=20000``, ``seed=3``, ...); the mode is
+    always "pppm".
+    """
+    scene_path = os.path.abspath(os.fspath(scene_path))
+    passes = int(passes)
+    if passes < 1:
+        raise ValueError(f"passes must be at least 1, not {passes}")
+    if (client is None) == (not ray):
+        raise ValueError("give either client=<dask.distributed.Client> or ray=True")
+    if settings.get("mode", "pppm") != "pppm":
+        raise ValueError(f"distributed renders use mode 'pppm', not {settings['mode']!r}")
+    settings.pop("mode", None)
+    for name in layers:
+        if name not in ("radius", "photons"):
+            raise ValueError(f"unknown layer {name!r} (layers: radius, photons)")
+    if output is not None:
+        output = os.fspath(output)
+        check_image_path(output)
+    checkpoint = None if checkpoint is None else os.fspath(checkpoint)
+    if not os.path.isfile(scene_path):
+        raise FileNotFoundError(f"{scene_path}: no such scene file")
+
+    backend = _DaskBackend(client, retries) if client is not None else _RayBackend(retries)
+    if chunk_passes is None:
+        workers = len(client.scheduler_info()["workers"]) if client is not None else 1
+        if client is None:
+            workers = max(1, int(backend.ray.cluster_resources().get("CPU", 1)))
+        chunk_passes = max(1, passes // (4 * max(1, workers)))
+    chunk_passes = int(chunk_passes)
+    if chunk_passes < 1:
+        raise ValueError(f"chunk_passes must be at least 1, not {chunk_passes}")
+
+    merged = None
+    if checkpoint is not None and os.path.exists(checkpoint):
+        merged = Partial.load(checkpoint)
+    missing = merged.missing(passes) if merged is not None else [(0, passes)]
+    chunks = list(_chunks(missing, chunk_passes))
+
+    bar = None
+    if progress:
+        try:
+            from tqdm.auto import tqdm
+            bar = tqdm(total=passes, initial=passes - sum(e - f for f, e in missing), unit="pass",
+                       desc=os.path.basename(scene_path))
+        except ImportError:
+            bar = None
+
+    futures = {backend.submit(scene_path, first, end, dict(settings), passes): (first, end)
+               for first, end in chunks}
+    started = time.perf_counter()
+    try:
+        for future, data in backend.completed(list(futures)):
+            chunk = futures.pop(future)
+            part = Partial.from_bytes(data)
+            if merged is None:
+                merged = part
+            else:
+                merged.merge(part)
+                part.close()
+            merged.pass_total = passes
+            _write(merged, output, checkpoint, layers)
+            if bar is not None:
+                bar.update(chunk[1] - chunk[0])
+            if callback is not None and callback(merged, chunk) is False:
+                break
+    finally:
+        if futures:
+            backend.cancel(futures)
+        if bar is not None:
+            bar.close()
+    if merged is None:
+        raise RuntimeError("no pass was rendered")
+    merged.elapsed = time.perf_counter() - started
+    return merged.image()
