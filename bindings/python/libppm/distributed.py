@@ -26,27 +26,30 @@ from .partial import Partial, check_image_path, write_image
 
 __all__ = ["render", "render_chunk"]
 
-# Scene files loaded by this worker process: (path, mtime, size) -> SceneFile.
+# Scene files loaded by this worker process: (path, mtime, size, threads) -> SceneFile.
 _scene_cache = {}
 
 
-def _scene_file(path):
+def _scene_file(path, threads):
+    from .context import Context
     from .scene_file import load
     status = os.stat(path)
-    key = (path, status.st_mtime_ns, status.st_size)
+    key = (path, status.st_mtime_ns, status.st_size, threads)
     scene_file = _scene_cache.get(key)
     if scene_file is None:
         for old in [k for k in _scene_cache if k[0] == path]:
             _scene_cache.pop(old).close()
-        scene_file = _scene_cache[key] = load(path)
+        context = Context(threads=threads) if threads else None
+        scene_file = _scene_cache[key] = load(path, context)
     return scene_file
 
 
-def render_chunk(scene_path, first, end, settings, pass_total=0):
+def render_chunk(scene_path, first, end, settings, pass_total=0, threads=0):
     """Renders passes ``first .. end-1`` of the scene in "pppm" mode with ``settings`` (a
-    dict of render settings) and returns the partial render's bytes (a task's work; also
-    usable on its own). The scene file is loaded once per process."""
-    renderer = _scene_file(os.fspath(scene_path)).create_renderer(mode="pppm", **settings)
+    dict of render settings) on ``threads`` threads (0: all cores) and returns the partial
+    render's bytes (a task's work; also usable on its own). The scene file is loaded once
+    per process."""
+    renderer = _scene_file(os.fspath(scene_path), int(threads)).create_renderer(mode="pppm", **settings)
     try:
         for index in range(int(first), int(end)):
             renderer.render_pass_index(index)
@@ -109,7 +112,8 @@ def _write(merged, output, checkpoint, layers):
 
 
 def render(scene_path, passes, chunk_passes=None, client=None, ray=False, output=None,
-           checkpoint=None, progress=True, layers=(), retries=3, callback=None, **settings):
+           checkpoint=None, progress=True, layers=(), retries=3, callback=None, threads_per_task=0,
+           **settings):
     """Renders ``passes`` passes of a scene file on a Dask cluster (``client``, a
     ``dask.distributed.Client``) or on Ray (``ray=True``; connects to a running cluster, or
     starts a local one) and returns the image: float32 ``(H, W, 3)`` linear radiance.
@@ -121,7 +125,8 @@ def render(scene_path, passes, chunk_passes=None, client=None, ray=False, output
     after each merge; an existing one is resumed. ``progress``: a tqdm progress bar (if tqdm
     is installed). ``retries``: how often the engine retries a failed chunk. ``callback``:
     called as ``callback(partial, (first, end))`` after each merge; returning ``False`` stops
-    (the checkpoint keeps the passes merged so far). Keyword ``settings`` override the
+    (the checkpoint keeps the passes merged so far). ``threads_per_task``: libppm's threads
+    in each task (0: all cores of the worker; 1 suits a worker per core). Keyword ``settings`` override the
     scene's integrator settings (``photons_per_pass=20000``, ``seed=3``, ...); the mode is
     always "pppm".
     """
@@ -169,7 +174,7 @@ def render(scene_path, passes, chunk_passes=None, client=None, ray=False, output
         except ImportError:
             bar = None
 
-    futures = {backend.submit(scene_path, first, end, dict(settings), passes): (first, end)
+    futures = {backend.submit(scene_path, first, end, dict(settings), passes, int(threads_per_task)): (first, end)
                for first, end in chunks}
     started = time.perf_counter()
     try:

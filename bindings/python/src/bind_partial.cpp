@@ -3,8 +3,8 @@
 #include "arrays.h"
 #include "objects.h"
 
-#include <nanobind/stl/string.h>
 #include <nanobind/stl/pair.h>
+#include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
 #include <string>
@@ -76,24 +76,25 @@ void bind_partial(nb::module_ &m) {
         check(ppm_renderer_get_partial(r.get(), &p));
         return new Partial(p, "Partial");
     });
-    m.def("renderer_merge_partial", [](Renderer &r, Partial &p) {
-        check(ppm_renderer_merge_partial(r.get(), p.get()));
-    });
+    m.def("renderer_merge_partial",
+          [](Renderer &r, Partial &p) { check(ppm_renderer_merge_partial(r.get(), p.get())); });
 
     m.def("image_check_path", [](const std::string &path) { check(ppm_image_check_path(path.c_str())); });
-    m.def("image_write", [](const std::string &path, InFloats radiance, uint32_t width, uint32_t height,
-                            const std::vector<std::string> &names, const std::vector<InFloats> &layers,
-                            double exposure) {
-        if (radiance.size() != size_t(width) * height * 3) throw nb::value_error("radiance: size is not width x height x 3");
-        if (names.size() != layers.size()) throw nb::value_error("one name per layer");
-        std::vector<ppm_image_layer> list;
-        for (size_t i = 0; i < layers.size(); ++i) {
-            if (layers[i].size() != size_t(width) * height) throw nb::value_error("a layer's size is not width x height");
-            list.push_back(ppm_image_layer{names[i].c_str(), layers[i].data()});
-        }
-        nb::gil_scoped_release unlocked;
-        check(ppm_image_write(path.c_str(), radiance.data(), width, height, list.data(), list.size(), exposure));
-    });
+    m.def("image_write",
+          [](const std::string &path, InFloats radiance, uint32_t width, uint32_t height,
+             const std::vector<std::string> &names, const std::vector<InFloats> &layers, double exposure) {
+              if (radiance.size() != size_t(width) * height * 3)
+                  throw nb::value_error("radiance: size is not width x height x 3");
+              if (names.size() != layers.size()) throw nb::value_error("one name per layer");
+              std::vector<ppm_image_layer> list;
+              for (size_t i = 0; i < layers.size(); ++i) {
+                  if (layers[i].size() != size_t(width) * height)
+                      throw nb::value_error("a layer's size is not width x height");
+                  list.push_back(ppm_image_layer{names[i].c_str(), layers[i].data()});
+              }
+              nb::gil_scoped_release unlocked;
+              check(ppm_image_write(path.c_str(), radiance.data(), width, height, list.data(), list.size(), exposure));
+          });
 }
 
 } // namespace ppm_py
