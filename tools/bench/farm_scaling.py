@@ -5,17 +5,19 @@ Measures, on this machine, for one scene:
   - the wall time of a render of P passes on 1 worker and on W workers (one libppm thread
     each, chunks of K passes), and the speed-up;
   - the per-chunk costs: loading the scene file (parsing, tessellation, BVH build) once per
-    worker process, the time per pass, the partial's size in bytes per pixel, and the driver's
-    time to decode and merge one partial and rewrite the image and checkpoint;
+    worker process, the time per pass, the partial's size in bytes per pixel, the driver's
+    time to decode and merge one partial, and its time to rewrite the checkpoint and image
+    (once per round of merges);
   - the same pass time, partial size and merge time at a target film size (default
     1920 x 1080), from one pass rendered here;
 and from those a model of the speed-up on larger farms: with C = P / K chunks, each worker
 renders ceil(C / W) chunks after one scene load, while the driver merges the C partials one
-after the other, so
-    T(W) = max(load + ceil(C / W) K t_pass,  C t_merge) + K t_pass + t_merge
+after the other and writes once per round of arrivals (a round merges every chunk that came
+in during the previous round's write, so writes do not add up per chunk), so
+    T(W) = max(load + ceil(C / W) K t_pass,  C t_merge) + t_merge + t_write
 and S(W) = T(1) / T(W). The chunk size to choose is the smallest K whose chunks take well
-over the merge time (K t_pass >> W t_merge keeps the driver idle) while C >> W keeps the
-workers busy until the end.
+over the merge time (K t_pass >> W t_merge keeps the driver from falling behind) while
+C >> W keeps the workers busy until the end.
 
   python3 tools/bench/farm_scaling.py [--scene examples/scenes/teapot-cornell.json]
       [--passes 16] [--chunk 2] [--workers 2] [--photons 50000] [--target 1920x1080]
@@ -77,25 +79,28 @@ def pass_costs(scene, settings, width=None, height=None):
     other = libppm.Renderer(scene_file.scene, camera, mode="pppm", **settings)
     other.render_pass_index(2)
     incoming_bytes = other.partial().to_bytes()
+    def merge():  # what the driver does per chunk
+        incoming = libppm.Partial.from_bytes(incoming_bytes)
+        merged.merge(incoming)
+        incoming.close()
+    merge_seconds, _ = timed(merge)
     with tempfile.TemporaryDirectory() as folder:
-        def merge_and_write():  # what the driver does per chunk
-            incoming = libppm.Partial.from_bytes(incoming_bytes)
-            merged.merge(incoming)
+        def write():  # what the driver does per round of merges
             merged.save(os.path.join(folder, "checkpoint.ppmpart"))
             libppm.write_image(os.path.join(folder, "image.exr"), merged.image())
-        merge_seconds, _ = timed(merge_and_write)
+        write_seconds, _ = timed(write)
     pixels = camera.width * camera.height
     for obj in (merged, other, renderer, scene_file, context):
         obj.close()
     return dict(load=load_seconds, pass_seconds=pass_seconds, bytes_per_pixel=len(data) / pixels,
-                merge=merge_seconds, width=camera.width, height=camera.height)
+                merge=merge_seconds, write=write_seconds, width=camera.width, height=camera.height)
 
 
 def model(costs, passes, chunk, workers):
     chunks = math.ceil(passes / chunk)
     t_chunk = chunk * costs["pass_seconds"]
     return max(costs["load"] + math.ceil(chunks / workers) * t_chunk, chunks * costs["merge"]) + \
-        costs["merge"]
+        costs["merge"] + costs["write"]
 
 
 def main():
@@ -127,7 +132,7 @@ def main():
         print(f"  {label} {c['width']} x {c['height']}: scene load + BVH {c['load']:.3f} s, "
               f"pass (1 thread) {c['pass_seconds']:.3f} s, partial {c['bytes_per_pixel']:.1f} "
               f"bytes/pixel ({c['bytes_per_pixel'] * c['width'] * c['height'] / 1e6:.1f} MB), "
-              f"merge + write {c['merge']:.3f} s")
+              f"decode + merge {c['merge']:.3f} s, checkpoint + image write {c['write']:.3f} s")
     print(f"model, {target_w} x {target_h}, {args.model_passes} passes:")
     for chunk in (1, 4, 16, 64):
         t_one = model(big, args.model_passes, chunk, 1)

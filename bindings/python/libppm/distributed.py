@@ -13,7 +13,8 @@ rendering them, however the chunks were split, ordered, retried or resumed.
 
 Each task loads the scene file on its worker (once per worker process: later tasks reuse it),
 renders its chunk and returns the partial's bytes; the driver merges them as they arrive,
-rewrites ``output`` and ``checkpoint`` atomically after each merge, and shows a progress bar.
+rewrites ``output`` and ``checkpoint`` atomically once per round (after merging every chunk
+that has arrived), and shows a progress bar.
 A driver started again with the same ``checkpoint`` renders only the passes it lacks. The
 engine retries a failed task or a lost worker's task (``retries`` times); a retried chunk
 renders the same bits. The scene path must name the same file on every worker (a shared
@@ -49,7 +50,8 @@ def render_chunk(scene_path, first, end, settings, pass_total=0, threads=0):
     dict of render settings) on ``threads`` threads (0: all cores) and returns the partial
     render's bytes (a task's work; also usable on its own). The scene file is loaded once
     per process."""
-    renderer = _scene_file(os.fspath(scene_path), int(threads)).create_renderer(mode="pppm", **settings)
+    scene_file = _scene_file(os.fspath(scene_path), int(threads))
+    renderer = scene_file.create_renderer(mode="pppm", **settings)
     try:
         for index in range(int(first), int(end)):
             renderer.render_pass_index(index)
@@ -69,8 +71,8 @@ class _DaskBackend:
 
     def completed(self, futures):
         from dask.distributed import as_completed
-        for future, result in as_completed(futures, with_results=True):
-            yield future, result
+        for batch in as_completed(futures, with_results=True).batches():
+            yield batch
 
     def cancel(self, futures):
         self.client.cancel(list(futures))
@@ -91,7 +93,10 @@ class _RayBackend:
         pending = list(futures)
         while pending:
             done, pending = self.ray.wait(pending, num_returns=1)
-            yield done[0], self.ray.get(done[0])
+            if pending:  # and whatever else is ready now
+                more, pending = self.ray.wait(pending, num_returns=len(pending), timeout=0)
+                done += more
+            yield [(future, self.ray.get(future)) for future in done]
 
     def cancel(self, futures):
         for future in futures:
@@ -120,14 +125,14 @@ def render(scene_path, passes, chunk_passes=None, client=None, ray=False, output
 
     ``chunk_passes``: passes per task (default: ``passes`` split into about 4 chunks per
     worker, at least 1 pass each). ``output``: the image path, rewritten atomically after
-    each merge (EXR linear float with ``layers``, e.g. ``("radius", "photons")``; PNG or
-    JPEG sRGB). ``checkpoint``: a partial-render file holding the merged passes, rewritten
-    after each merge; an existing one is resumed. ``progress``: a tqdm progress bar (if tqdm
-    is installed). ``retries``: how often the engine retries a failed chunk. ``callback``:
-    called as ``callback(partial, (first, end))`` after each merge; returning ``False`` stops
-    (the checkpoint keeps the passes merged so far). ``threads_per_task``: libppm's threads
-    in each task (0: all cores of the worker; 1 suits a worker per core). Keyword ``settings`` override the
-    scene's integrator settings (``photons_per_pass=20000``, ``seed=3``, ...); the mode is
+    each round of merges (EXR linear float with ``layers``, e.g. ``("radius", "photons")``;
+    PNG or JPEG sRGB). ``checkpoint``: a partial-render file holding the merged passes,
+    rewritten with the image; an existing one is resumed. ``progress``: a tqdm progress bar
+    (if tqdm is installed). ``retries``: how often the engine retries a failed chunk.
+    ``callback``: called as ``callback(partial, (first, end))`` after each chunk's merge;
+    returning ``False`` stops (the checkpoint keeps the passes merged so far).
+    ``threads_per_task``: libppm's threads in each task (0: all cores of the worker; 1 suits
+    a worker per core). Keyword ``settings`` override the scene's integrator settings (``photons_per_pass=20000``, ``seed=3``, ...); the mode is
     always "pppm".
     """
     scene_path = os.path.abspath(os.fspath(scene_path))
@@ -174,23 +179,31 @@ def render(scene_path, passes, chunk_passes=None, client=None, ray=False, output
         except ImportError:
             bar = None
 
-    futures = {backend.submit(scene_path, first, end, dict(settings), passes, int(threads_per_task)): (first, end)
+    futures = {backend.submit(scene_path, first, end, dict(settings), passes,
+                              int(threads_per_task)): (first, end)
                for first, end in chunks}
     started = time.perf_counter()
     try:
-        for future, data in backend.completed(list(futures)):
-            chunk = futures.pop(future)
-            part = Partial.from_bytes(data)
-            if merged is None:
-                merged = part
-            else:
-                merged.merge(part)
-                part.close()
-            merged.pass_total = passes
+        # Each round merges every chunk that has arrived, then rewrites the image and the
+        # checkpoint once: the writes cost the driver per round, not per chunk.
+        stop = False
+        for batch in backend.completed(list(futures)):
+            for future, data in batch:
+                chunk = futures.pop(future)
+                part = Partial.from_bytes(data)
+                if merged is None:
+                    merged = part
+                else:
+                    merged.merge(part)
+                    part.close()
+                merged.pass_total = passes
+                if bar is not None:
+                    bar.update(chunk[1] - chunk[0])
+                if callback is not None and callback(merged, chunk) is False:
+                    stop = True
+                    break
             _write(merged, output, checkpoint, layers)
-            if bar is not None:
-                bar.update(chunk[1] - chunk[0])
-            if callback is not None and callback(merged, chunk) is False:
+            if stop:
                 break
     finally:
         if futures:
