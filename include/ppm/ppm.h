@@ -706,7 +706,8 @@ PPM_API ppm_status ppm_image_write(const char *path, const float *radiance, uint
 
 typedef struct ppm_scene_file_t *ppm_scene_file;
 
-/* Reads a JSON scene file: builds and commits its scene (shapes, materials, textures,
+/* Reads a scene file (JSON, or Mitsuba 3 XML by its extension ".xml" or content; see
+ * ppm_scene_file_options): builds and commits its scene (shapes, materials, textures,
  * lights), and keeps its camera and render settings. Relative paths inside the file are
  * relative to the file's folder. Errors name the file, line, column and key
  * ("scene.json:14:9: bsdfs.glass.int_ior: expected a number > 0"): PARSE for JSON syntax,
@@ -718,6 +719,54 @@ typedef struct ppm_scene_file_t *ppm_scene_file;
  * Thread safe with respect to other objects of the same context. A loaded file is
  * immutable: every call below is thread safe. */
 PPM_API ppm_status ppm_scene_file_load(ppm_context context, const char *path, ppm_scene_file *out_file);
+
+/* How ppm_scene_file_load_v2 and ppm_scene_file_load_memory read a scene: a struct that can
+ * grow (see "Growth"), filled by ppm_scene_file_options_init. ppm_scene_file_load reads
+ * with these defaults. Besides libppm's JSON, the loaders read Mitsuba 3 XML scene files
+ * (docs/scene-format.md lists what is supported), chosen by `format`. */
+typedef struct ppm_scene_file_options {
+    size_t size; /* sizeof(ppm_scene_file_options) as the caller compiled it */
+    /* "json", "xml", or NULL (default): XML for a path ending in ".xml" or a text whose first
+     * non-blank character is '<', JSON otherwise. */
+    const char *format;
+    /* Parameters of an XML file (Mitsuba's -D name=value): define_count names and values
+     * that replace the file's <default name="..." value="..."/>. Giving any for a JSON file
+     * is INVALID_ARGUMENT. Default none. */
+    const char *const *define_names;
+    const char *const *define_values;
+    size_t define_count;
+    /* Nonzero: what libppm cannot render in an XML file is substituted (an unknown BSDF by
+     * a grey diffuse one, an unknown emitter or texture left out), each element with one
+     * warning through the context's warning callback; 0 (default): that is a PARSE error
+     * naming file, line and element. */
+    int lenient;
+    uint64_t reserved[4]; /* 0 */
+} ppm_scene_file_options;
+
+/* Sets *options to the defaults above, `size` to sizeof(ppm_scene_file_options) and every
+ * other byte to 0. */
+static inline void ppm_scene_file_options_init(ppm_scene_file_options *options) {
+    unsigned char *bytes = (unsigned char *)options;
+    size_t i;
+    for (i = 0; i < sizeof *options; ++i) bytes[i] = 0;
+    options->size = sizeof *options;
+}
+
+/* ppm_scene_file_load with options (NULL: the defaults). Errors: as ppm_scene_file_load, and
+ * INVALID_ARGUMENT for bad options (a size out of range, an unknown format, a NULL or empty
+ * parameter name, NULL arrays with a count, parameters for a JSON file), UNSUPPORTED for
+ * nonzero bytes this library does not know. Warnings of lenient reading go to the context's
+ * warning callback. */
+PPM_API ppm_status ppm_scene_file_load_v2(ppm_context context, const char *path, const ppm_scene_file_options *options,
+                                          ppm_scene_file *out_file);
+/* A scene file from `size` bytes of text at `text` (JSON or XML as `options` says), as if it
+ * were a file named `name` (messages say "name:line:column: ..."; NULL: "<scene text>")
+ * in the folder `folder`, against which the relative file names inside are resolved (NULL:
+ * the working directory). Errors: as ppm_scene_file_load_v2 (IO only for files the text
+ * names), INVALID_ARGUMENT (NULL text with a nonzero size). */
+PPM_API ppm_status ppm_scene_file_load_memory(ppm_context context, const char *text, size_t size, const char *name,
+                                              const char *folder, const ppm_scene_file_options *options,
+                                              ppm_scene_file *out_file);
 /* Adds / drops a reference (atomic: thread safe). The scene, renderers and references taken
  * from the file stay valid after its last release. Errors (retain): INVALID_ARGUMENT (NULL). */
 PPM_API ppm_status ppm_scene_file_retain(ppm_scene_file file);

@@ -6,7 +6,10 @@
 #include "api/api_renderer.h"
 #include "scenefile/scene_file.h"
 
+#include <algorithm>
+#include <cstddef>
 #include <cstring>
+#include <string>
 
 struct ppm_scene_file_t : ppm::SceneFile {
     using SceneFile::SceneFile;
@@ -24,16 +27,99 @@ template <class Body> ppm_status file_call(ppm_scene_file file, Body &&body) noe
     return guarded(&file->scene()->context(), [&] { body(*file); });
 }
 
+// The size of the first ppm_scene_file_options (it ends with `reserved`), and one no version
+// will reach: larger is taken for an uninitialised struct.
+constexpr size_t kFirstOptionsSize =
+    offsetof(ppm_scene_file_options, reserved) + sizeof(ppm_scene_file_options{}.reserved);
+constexpr size_t kMaxOptionsSize = 4096;
+
+// The options of the caller's struct, which holds `options->size` bytes.
+ppm::SceneFileSource source_with_options(const ppm_scene_file_options *options) {
+    ppm::SceneFileSource source;
+    if (!options) return source;
+    const size_t size = options->size;
+    if (size < kFirstOptionsSize || size > kMaxOptionsSize)
+        ppm::invalid_argument("options->size is " + std::to_string(size) +
+                              ", expected sizeof(ppm_scene_file_options) (" +
+                              std::to_string(sizeof(ppm_scene_file_options)) +
+                              " in this libppm): initialise the struct with ppm_scene_file_options_init");
+    const auto *bytes = reinterpret_cast<const unsigned char *>(options);
+    for (size_t i = sizeof(ppm_scene_file_options); i < size; ++i)
+        if (bytes[i] != 0)
+            ppm::fail(PPM_ERROR_UNSUPPORTED, "options byte " + std::to_string(i) + " of " + std::to_string(size) +
+                                                 " is set, but this libppm knows only the first " +
+                                                 std::to_string(sizeof(ppm_scene_file_options)) + " bytes");
+    ppm_scene_file_options known;
+    std::memset(&known, 0, sizeof known);
+    std::memcpy(&known, options, std::min(size, sizeof known));
+    for (const uint64_t word : known.reserved)
+        if (word != 0) ppm::invalid_argument("options->reserved must be 0");
+
+    if (known.format) {
+        const std::string format = known.format;
+        if (format == "json")
+            source.format = ppm::SceneFileSource::Format::Json;
+        else if (format == "xml")
+            source.format = ppm::SceneFileSource::Format::Xml;
+        else
+            ppm::invalid_argument("options->format is '" + format + "', expected \"json\", \"xml\" or NULL");
+    }
+    if (known.define_count > 0) {
+        require(known.define_names, "options->define_names");
+        require(known.define_values, "options->define_values");
+    }
+    for (size_t i = 0; i < known.define_count; ++i) {
+        const std::string index = "[" + std::to_string(i) + "]";
+        require(known.define_names[i], ("options->define_names" + index).c_str());
+        require(known.define_values[i], ("options->define_values" + index).c_str());
+        if (!*known.define_names[i]) ppm::invalid_argument("options->define_names" + index + " is empty");
+        source.defines[known.define_names[i]] = known.define_values[i];
+    }
+    source.lenient = known.lenient != 0;
+    return source;
+}
+
+ppm_scene_file load(ppm_context context, const ppm::SceneFileSource &source) {
+    auto *file = new ppm_scene_file_t(context, source);
+    for (const std::string &warning : file->warnings()) context->warn(warning);
+    return file;
+}
+
 } // namespace
 
 extern "C" {
 
 ppm_status ppm_scene_file_load(ppm_context context, const char *path, ppm_scene_file *out_file) {
+    return ppm_scene_file_load_v2(context, path, nullptr, out_file);
+}
+
+ppm_status ppm_scene_file_load_v2(ppm_context context, const char *path, const ppm_scene_file_options *options,
+                                  ppm_scene_file *out_file) {
     return guarded(context, [&] {
         require(context, "context");
         require(path, "path");
         require(out_file, "out_file");
-        *out_file = new ppm_scene_file_t(context, path);
+        ppm::SceneFileSource source = source_with_options(options);
+        source.path = path;
+        *out_file = load(context, source);
+    });
+}
+
+ppm_status ppm_scene_file_load_memory(ppm_context context, const char *text, size_t size, const char *name,
+                                      const char *folder, const ppm_scene_file_options *options,
+                                      ppm_scene_file *out_file) {
+    return guarded(context, [&] {
+        require(context, "context");
+        if (size > 0) require(text, "text");
+        require(out_file, "out_file");
+        ppm::SceneFileSource source = source_with_options(options);
+        std::string path = folder && *folder ? std::string(folder) : std::string();
+        if (!path.empty() && path.back() != '/') path += '/';
+        path += name ? name : "<scene text>";
+        const std::string content(text ? text : "", size);
+        source.path = path;
+        source.text = &content;
+        *out_file = load(context, source);
     });
 }
 

@@ -80,11 +80,20 @@ std::string join_key_path(const std::string &parent, const std::string &key) {
     return parent.empty() ? key : parent + "." + key;
 }
 
-JsonDocument::JsonDocument(const std::string &path) : path_(path), text_(read_text_file(path)) {
-    line_starts_.push_back(0);
-    for (std::size_t i = 0; i < text_.size(); ++i)
-        if (text_[i] == '\n') line_starts_.push_back(i + 1);
+JsonDocument::JsonDocument(const std::string &path) : JsonDocument(path, read_text_file(path)) {}
 
+JsonDocument::JsonDocument(const std::string &path, std::string text) {
+    base_ = sources_.add(path, std::move(text));
+    parse();
+}
+
+JsonDocument::JsonDocument(Json::Value root, SourceFiles sources)
+    : sources_(std::move(sources)), parsed_here_(false), root_(std::move(root)) {
+    if (sources_.count() == 0) sources_.add("<scene>", std::string());
+}
+
+void JsonDocument::parse() {
+    const std::string &text = sources_.text(0);
     Json::CharReaderBuilder builder;
     builder["allowComments"] = true;
     builder["strictRoot"] = true;
@@ -97,31 +106,25 @@ JsonDocument::JsonDocument(const std::string &path) : path_(path), text_(read_te
     builder["allowSpecialFloats"] = false;
     builder["stackLimit"] = 200;
     std::string unreadable;
-    const std::size_t bad = first_unreadable_byte(text_, unreadable);
-    if (bad != std::string::npos) parse_error(location_of_offset(bad) + ": " + unreadable);
+    const std::size_t bad = first_unreadable_byte(text, unreadable);
+    if (bad != std::string::npos) parse_error(sources_.location(base_ + bad) + ": " + unreadable);
     const std::unique_ptr<Json::CharReader> reader(builder.newCharReader());
     std::string errors;
     bool parsed = false;
     try {
-        parsed = reader->parse(text_.data(), text_.data() + text_.size(), &root_, &errors);
+        parsed = reader->parse(text.data(), text.data() + text.size(), &root_, &errors);
     } catch (const std::exception &e) {
-        parse_error(path_ + ": " + e.what());
+        parse_error(path() + ": " + e.what());
     }
-    if (!parsed) parse_error(first_jsoncpp_error(path_, errors));
+    if (!parsed) parse_error(first_jsoncpp_error(path(), errors));
     if (!root_.isObject()) parse_error(location(root_) + ": the scene must be a JSON object { ... }");
 }
 
 std::string JsonDocument::location(const Json::Value &value) const {
     const std::ptrdiff_t offset = value.getOffsetStart();
-    if (offset < 0 || static_cast<std::size_t>(offset) > text_.size()) return path_;
-    return location_of_offset(static_cast<std::size_t>(offset));
-}
-
-std::string JsonDocument::location_of_offset(std::size_t offset) const {
-    const auto line = std::upper_bound(line_starts_.begin(), line_starts_.end(), static_cast<std::size_t>(offset)) - 1;
-    const std::size_t line_number = static_cast<std::size_t>(line - line_starts_.begin()) + 1;
-    const std::size_t column = static_cast<std::size_t>(offset) - *line + 1;
-    return path_ + ":" + std::to_string(line_number) + ":" + std::to_string(column);
+    if (!parsed_here_) return sources_.location(offset < 0 ? 0 : static_cast<std::size_t>(offset));
+    if (offset < 0 || static_cast<std::size_t>(offset) > sources_.text(0).size()) return path();
+    return sources_.location(base_ + static_cast<std::size_t>(offset));
 }
 
 std::string JsonNode::where() const {

@@ -3,6 +3,8 @@
 // ("scene.json:14:9: bsdfs.glass.int_ior: expected a number > 0").
 #pragma once
 
+#include "scenefile/source_files.h"
+
 #include <json/value.h>
 
 #include <array>
@@ -12,24 +14,32 @@
 
 namespace ppm {
 
-// A parsed JSON file and the map from byte offsets to lines and columns.
+// A parsed JSON file, or a scene structure another reader built (Mitsuba XML), with the map
+// from its values to lines and columns in the files it came from.
 class JsonDocument {
 public:
     // Reads and parses `path`: comments allowed; duplicate keys, trailing garbage, NUL bytes,
     // nesting deeper than 64 levels and non-finite numbers rejected. Throws ppm::Error: IO (unreadable file), PARSE (syntax;
     // the message is "path:line:column: what").
     explicit JsonDocument(const std::string &path);
+    // Parses `text` as the content of a file named `path` (which need not exist), as above.
+    JsonDocument(const std::string &path, std::string text);
+    // A structure built by another reader: the offsets of its values are positions in
+    // `sources` (0: none).
+    JsonDocument(Json::Value root, SourceFiles sources);
 
-    const std::string &path() const { return path_; }
+    // The (first) file's path.
+    const std::string &path() const { return sources_.path(0); }
     const Json::Value &root() const { return root_; }
-    // "path:line:column" of a value (the file alone if jsoncpp gave it no offset).
+    // "path:line:column" of a value (the file alone if it has no position).
     std::string location(const Json::Value &value) const;
-    std::string location_of_offset(std::size_t offset) const;
 
 private:
-    std::string path_;
-    std::string text_;
-    std::vector<std::size_t> line_starts_; // byte offset of every line's first character
+    void parse();
+
+    SourceFiles sources_;
+    bool parsed_here_ = true; // offsets count from the start of the one JSON text (else: positions)
+    std::size_t base_ = 0;    // the JSON text's first position in sources_
     Json::Value root_;
 };
 

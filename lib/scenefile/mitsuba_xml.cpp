@@ -15,32 +15,6 @@
 
 namespace ppm {
 
-// ---- SourceFiles ----------------------------------------------------------------------------
-
-std::size_t SourceFiles::add(const std::string &path, std::string text) {
-    File file;
-    file.path = path;
-    file.base = next_base_;
-    file.line_starts.push_back(0);
-    for (std::size_t i = 0; i < text.size(); ++i)
-        if (text[i] == '\n') file.line_starts.push_back(i + 1);
-    next_base_ += text.size() + 1;
-    file.text = std::move(text);
-    files_.push_back(std::move(file));
-    return files_.back().base;
-}
-
-std::string SourceFiles::location(std::size_t position) const {
-    for (const File &file : files_) {
-        if (position < file.base || position > file.base + file.text.size()) continue;
-        const std::size_t offset = position - file.base;
-        const auto line = std::upper_bound(file.line_starts.begin(), file.line_starts.end(), offset) - 1;
-        return file.path + ":" + std::to_string(line - file.line_starts.begin() + 1) + ":" +
-               std::to_string(offset - *line + 1);
-    }
-    return files_.empty() ? std::string("<no file>") : files_.front().path;
-}
-
 bool looks_like_xml(const std::string &text) {
     std::size_t i = 0;
     if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) i = 3; // UTF-8 byte order mark
@@ -91,10 +65,10 @@ public:
         for (const auto &define : options.defines) parameters_[define.first] = define.second;
     }
 
-    void read(const std::string &path) {
+    void read(const std::string &path, const std::string *text) {
         out_.root = Json::Value(Json::objectValue);
         out_.root["shapes"] = Json::Value(Json::arrayValue);
-        read_file(path, nullptr);
+        read_file(path, nullptr, text);
         // Objects at the top with an id are converted where they are referred to; the BSDFs
         // also become the scene's named materials.
         for (const Pending &pending : top_level_) convert_top_level(pending);
@@ -147,7 +121,9 @@ private:
 
     // ---- files and includes -------------------------------------------------------------
 
-    void read_file(const std::string &path, const std::pair<pugi::xml_node, const Source *> *included_from) {
+    // `given_text`: the file's text when the caller has it already (NULL: read `path`).
+    void read_file(const std::string &path, const std::pair<pugi::xml_node, const Source *> *included_from,
+                   const std::string *given_text = nullptr) {
         if (std::find(include_stack_.begin(), include_stack_.end(), path) != include_stack_.end()) {
             std::string cycle;
             for (const std::string &file : include_stack_) cycle += file + " -> ";
@@ -158,7 +134,7 @@ private:
                   "includes nested deeper than " + std::to_string(kMaxIncludeDepth) + " files");
         std::string text;
         try {
-            text = read_text_file(path);
+            text = given_text ? *given_text : read_text_file(path);
         } catch (const Error &e) {
             if (!included_from) throw;
             fail(e.status(), where(included_from->first, *included_from->second) + ": " + e.what());
@@ -703,9 +679,9 @@ private:
 
 } // namespace
 
-XmlScene read_mitsuba_xml(const std::string &path, const XmlOptions &options) {
+XmlScene read_mitsuba_xml(const std::string &path, const XmlOptions &options, const std::string *text) {
     XmlScene scene;
-    XmlReader(options, scene).read(path);
+    XmlReader(options, scene).read(path, text);
     return scene;
 }
 

@@ -20,6 +20,8 @@
 // one found later by the builder, reads "scene.xml:12:5: shapes[2].bsdf.alpha: ...".
 #pragma once
 
+#include "scenefile/source_files.h"
+
 #include <json/value.h>
 
 #include <map>
@@ -27,28 +29,6 @@
 #include <vector>
 
 namespace ppm {
-
-// The files a scene was read from. A position is one number across all of them: file k's
-// bytes are numbered from base[k] on.
-class SourceFiles {
-public:
-    // Adds a file and returns its base.
-    std::size_t add(const std::string &path, std::string text);
-    const std::string &text(std::size_t file) const { return files_[file].text; }
-    std::size_t count() const { return files_.size(); }
-    // "path:line:column" of a position ("path" alone for one outside every file).
-    std::string location(std::size_t position) const;
-
-private:
-    struct File {
-        std::string path;
-        std::string text;
-        std::size_t base = 0;
-        std::vector<std::size_t> line_starts;
-    };
-    std::vector<File> files_;
-    std::size_t next_base_ = 1; // 0 means "no position" to jsoncpp's users
-};
 
 struct XmlOptions {
     std::map<std::string, std::string> defines; // parameters, overriding the file's <default>s
@@ -64,8 +44,10 @@ struct XmlScene {
 // Whether `text` looks like an XML document (its first non-blank character is '<').
 bool looks_like_xml(const std::string &text);
 
-// Throws ppm::Error: IO for a missing or unreadable file (the scene or an include), PARSE for
-// malformed XML and everything the reader refuses, located as above.
-XmlScene read_mitsuba_xml(const std::string &path, const XmlOptions &options);
+// Reads the file `path`, or `text` as if it were that file's content (its includes are still
+// relative to the folder of `path`). Throws ppm::Error: IO for a missing or unreadable file
+// (the scene or an include), PARSE for malformed XML and everything the reader refuses,
+// located as above.
+XmlScene read_mitsuba_xml(const std::string &path, const XmlOptions &options, const std::string *text = nullptr);
 
 } // namespace ppm

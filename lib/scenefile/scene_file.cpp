@@ -1,9 +1,14 @@
 #include "scenefile/scene_file.h"
 
 #include "core/error.h"
+#include "io/text_file.h"
 #include "scenefile/json_node.h"
+#include "scenefile/mitsuba_xml.h"
 #include "scenefile/scene_builder.h"
 #include "scenefile/transform.h"
+
+#include <cctype>
+#include <memory>
 
 namespace ppm {
 
@@ -95,10 +100,52 @@ std::string folder_of(const std::string &path) {
     return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
 }
 
+bool has_xml_extension(const std::string &path) {
+    if (path.size() < 4) return false;
+    std::string extension = path.substr(path.size() - 4);
+    for (char &c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return extension == ".xml";
+}
+
+// The document of either format, and the folder its file names are relative to: the JSON
+// file's, while the XML reader has resolved every name against the file that holds it.
+struct ReadDocument {
+    std::unique_ptr<JsonDocument> document;
+    std::string folder;
+    std::vector<std::string> warnings;
+};
+
+ReadDocument read_document(const SceneFileSource &source) {
+    using Format = SceneFileSource::Format;
+    const std::string text = source.text ? *source.text : read_text_file(source.path);
+    Format format = source.format;
+    if (format == Format::Detect)
+        format = has_xml_extension(source.path) || looks_like_xml(text) ? Format::Xml : Format::Json;
+    ReadDocument read;
+    if (format == Format::Xml) {
+        XmlOptions options;
+        options.defines = source.defines;
+        options.lenient = source.lenient;
+        XmlScene scene = read_mitsuba_xml(source.path, options, &text);
+        read.document = std::make_unique<JsonDocument>(std::move(scene.root), std::move(scene.sources));
+        read.warnings = std::move(scene.warnings);
+        return read;
+    }
+    if (!source.defines.empty())
+        invalid_argument(source.path + ": parameter '" + source.defines.begin()->first +
+                         "' given, but parameters (-D) apply to Mitsuba XML scene files only");
+    read.document = std::make_unique<JsonDocument>(source.path, text);
+    read.folder = folder_of(source.path);
+    return read;
+}
+
 } // namespace
 
-SceneFile::SceneFile(ppm_context context, const std::string &path) {
-    const JsonDocument document(path);
+SceneFile::SceneFile(ppm_context context, const SceneFileSource &source) {
+    const ReadDocument read = read_document(source);
+    const JsonDocument &document = *read.document;
+    warnings_ = read.warnings;
+    const std::string &path = source.path;
     const JsonNode root(document, document.root(), "");
     root.allow_only({"version", "integrator", "sensor", "bsdfs", "emitters", "shapes"});
     if (root.has("version")) root.at("version").integer(1, 1);
@@ -114,7 +161,7 @@ SceneFile::SceneFile(ppm_context context, const std::string &path) {
     const ppm_status created = ppm_scene_create(context, &scene_);
     if (created != PPM_OK) fail(created, ppm_last_error_message());
     try {
-        SceneBuilder builder(scene_, folder_of(path));
+        SceneBuilder builder(scene_, read.folder);
         if (root.has("bsdfs")) builder.add_bsdfs(root.at("bsdfs"));
         if (root.has("emitters")) builder.add_emitters(root.at("emitters"));
         builder.add_shapes(root.at("shapes"));

@@ -1,5 +1,5 @@
-// A scene file (docs/scene-format.md) read into a committed scene, a camera and render
-// settings. The builder goes through the public C API, so a scene file can express exactly
+// A scene file (docs/scene-format.md: libppm's JSON, or Mitsuba 3 XML) read into a committed
+// scene, a camera and render settings. The builder goes through the public C API, so a scene file can express exactly
 // what a program can, and every check of the API also guards files; its messages get the
 // file's location in front.
 #pragma once
@@ -9,16 +9,33 @@
 #include "core/ref_counted.h"
 #include "render/render_settings.h"
 
+#include <map>
 #include <string>
+#include <vector>
 
 namespace ppm {
+
+// Where a scene file's text comes from and how to read it.
+struct SceneFileSource {
+    enum class Format { Detect, Json, Xml };
+
+    std::string path;                           // the file; for `text`, the name messages give it
+    const std::string *text = nullptr;          // the content, when not read from `path`
+    Format format = Format::Detect;             // Detect: XML for a ".xml" name or text starting with '<'
+    std::map<std::string, std::string> defines; // Mitsuba XML parameters (as its -D name=value)
+    bool lenient = false;                       // XML: substitute what libppm cannot render, with a warning
+};
 
 class SceneFile : public RefCounted {
 public:
     // Throws ppm::Error: IO for a missing file (the scene or one it names), PARSE for
-    // anything wrong inside it, with "file:line:column: key.path: what".
-    SceneFile(ppm_context context, const std::string &path);
+    // anything wrong inside it, with "file:line:column: key.path: what", INVALID_ARGUMENT
+    // for parameters given for a JSON file.
+    SceneFile(ppm_context context, const SceneFileSource &source);
     ~SceneFile() override;
+
+    // What the reader skipped or substituted, "file:line:column: what", one per element.
+    const std::vector<std::string> &warnings() const { return warnings_; }
 
     ppm_scene scene() const { return scene_; }
     const ppm_camera &camera() const { return camera_; }
@@ -32,6 +49,7 @@ private:
     RenderSettings settings_;
     std::int64_t passes_ = 0;
     double time_ = 0;
+    std::vector<std::string> warnings_;
 };
 
 } // namespace ppm
