@@ -113,9 +113,9 @@ ppm_status ppm_scene_file_load_memory(ppm_context context, const char *text, siz
         if (size > 0) require(text, "text");
         require(out_file, "out_file");
         ppm::SceneFileSource source = source_with_options(options);
-        std::string path = folder && *folder ? std::string(folder) : std::string();
-        if (!path.empty() && path.back() != '/') path += '/';
-        path += name ? name : "<scene text>";
+        source.folder = folder && *folder ? std::string(folder) : std::string();
+        if (!source.folder.empty() && source.folder.back() != '/') source.folder += '/';
+        const std::string path = name ? name : "<scene text>";
         const std::string content(text ? text : "", size);
         source.path = path;
         source.text = &content;

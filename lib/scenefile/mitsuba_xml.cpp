@@ -65,10 +65,10 @@ public:
         for (const auto &define : options.defines) parameters_[define.first] = define.second;
     }
 
-    void read(const std::string &path, const std::string *text) {
+    void read(const std::string &path, const std::string *text, const std::string *folder) {
         out_.root = Json::Value(Json::objectValue);
         out_.root["shapes"] = Json::Value(Json::arrayValue);
-        read_file(path, nullptr, text);
+        read_file(path, nullptr, text, folder);
         // Objects at the top with an id are converted where they are referred to; the BSDFs
         // also become the scene's named materials.
         for (const Pending &pending : top_level_) convert_top_level(pending);
@@ -121,9 +121,10 @@ private:
 
     // ---- files and includes -------------------------------------------------------------
 
-    // `given_text`: the file's text when the caller has it already (NULL: read `path`).
+    // `given_text`: the file's text when the caller has it already (NULL: read `path`), and
+    // `given_folder` what its names are relative to (NULL: the folder of `path`).
     void read_file(const std::string &path, const std::pair<pugi::xml_node, const Source *> *included_from,
-                   const std::string *given_text = nullptr) {
+                   const std::string *given_text = nullptr, const std::string *given_folder = nullptr) {
         if (std::find(include_stack_.begin(), include_stack_.end(), path) != include_stack_.end()) {
             std::string cycle;
             for (const std::string &file : include_stack_) cycle += file + " -> ";
@@ -143,7 +144,9 @@ private:
         source->document = std::make_unique<pugi::xml_document>();
         source->base = out_.sources.add(path, text);
         const std::size_t slash = path.rfind('/');
-        source->folder = slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
+        source->folder = given_folder                 ? *given_folder
+                         : slash == std::string::npos ? std::string()
+                                                      : path.substr(0, slash + 1);
         const pugi::xml_parse_result parsed =
             source->document->load_buffer(text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
         if (!parsed)
@@ -679,9 +682,16 @@ private:
 
 } // namespace
 
-XmlScene read_mitsuba_xml(const std::string &path, const XmlOptions &options, const std::string *text) {
+XmlScene read_mitsuba_xml(const std::string &path, const XmlOptions &options) {
     XmlScene scene;
-    XmlReader(options, scene).read(path, text);
+    XmlReader(options, scene).read(path, nullptr, nullptr);
+    return scene;
+}
+
+XmlScene read_mitsuba_xml(const std::string &path, const XmlOptions &options, const std::string *text,
+                          const std::string &folder) {
+    XmlScene scene;
+    XmlReader(options, scene).read(path, text, &folder);
     return scene;
 }
 

@@ -44,10 +44,12 @@ struct XmlScene {
 // Whether `text` looks like an XML document (its first non-blank character is '<').
 bool looks_like_xml(const std::string &text);
 
-// Reads the file `path`, or `text` as if it were that file's content (its includes are still
-// relative to the folder of `path`). Throws ppm::Error: IO for a missing or unreadable file
+// Reads the file `path`, or `text` under the name `path` with its file names relative to
+// `folder` ("" or ending in '/'). Throws ppm::Error: IO for a missing or unreadable file
 // (the scene or an include), PARSE for malformed XML and everything the reader refuses,
 // located as above.
-XmlScene read_mitsuba_xml(const std::string &path, const XmlOptions &options, const std::string *text = nullptr);
+XmlScene read_mitsuba_xml(const std::string &path, const XmlOptions &options);
+XmlScene read_mitsuba_xml(const std::string &path, const XmlOptions &options, const std::string *text,
+                          const std::string &folder);
 
 } // namespace ppm

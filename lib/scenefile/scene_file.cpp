@@ -126,7 +126,8 @@ ReadDocument read_document(const SceneFileSource &source) {
         XmlOptions options;
         options.defines = source.defines;
         options.lenient = source.lenient;
-        XmlScene scene = read_mitsuba_xml(source.path, options, &text);
+        XmlScene scene = source.text ? read_mitsuba_xml(source.path, options, &text, source.folder)
+                                     : read_mitsuba_xml(source.path, options);
         read.document = std::make_unique<JsonDocument>(std::move(scene.root), std::move(scene.sources));
         read.warnings = std::move(scene.warnings);
         return read;
@@ -135,7 +136,7 @@ ReadDocument read_document(const SceneFileSource &source) {
         invalid_argument(source.path + ": parameter '" + source.defines.begin()->first +
                          "' given, but parameters (-D) apply to Mitsuba XML scene files only");
     read.document = std::make_unique<JsonDocument>(source.path, text);
-    read.folder = folder_of(source.path);
+    read.folder = source.text ? source.folder : folder_of(source.path);
     return read;
 }
 

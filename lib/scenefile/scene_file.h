@@ -21,6 +21,7 @@ struct SceneFileSource {
 
     std::string path;                           // the file; for `text`, the name messages give it
     const std::string *text = nullptr;          // the content, when not read from `path`
+    std::string folder;                         // for `text`: what its file names are relative to
     Format format = Format::Detect;             // Detect: XML for a ".xml" name or text starting with '<'
     std::map<std::string, std::string> defines; // Mitsuba XML parameters (as its -D name=value)
     bool lenient = false;                       // XML: substitute what libppm cannot render, with a warning

@@ -5,9 +5,10 @@ Objects (:class:`Context`, :class:`Scene`, :class:`Renderer`, :class:`SceneFile`
 libppm handle: ``close()`` or a ``with`` block releases it, and a child keeps its parents
 alive. Arrays are numpy; failures raise :class:`Error` subclasses carrying libppm's message.
 """
-from ._errors import (CancelledError, ClosedError, Error, FileError, InternalError,
-                      InvalidArgumentError, InvalidOperationError, OutOfMemoryError, ParseError,
-                      Status, UnsupportedError)
+from ._errors import (CancelledError, ClosedError, Error, FileError, FileNotFoundError,
+                      InternalError, InvalidArgumentError, InvalidOperationError,
+                      OutOfMemoryError, ParseError, Status, UnknownKeyError, UnsupportedError,
+                      Warning)
 from . import _core
 from ._rays import HIT_DTYPE, RAY_DTYPE, Hits
 from .camera import Camera
@@ -15,7 +16,8 @@ from .context import Context, default_context
 from .partial import Partial, check_image_path, write_image
 from .renderer import Renderer
 from .scene import Scene
-from .scene_file import SceneFile, load
+from .quick_render import render
+from .scene_file import SceneFile, load, load_dict, load_file, load_string
 from .tessellate import Mesh, tessellate
 
 __version__ = "0.1.0"
@@ -35,9 +37,10 @@ def version():
 
 
 __all__ = [
-    "CancelledError", "ClosedError", "Error", "FileError", "InternalError",
+    "CancelledError", "ClosedError", "Error", "FileError", "FileNotFoundError", "InternalError",
     "InvalidArgumentError", "InvalidOperationError", "OutOfMemoryError", "ParseError", "Status",
-    "UnsupportedError", "HIT_DTYPE", "RAY_DTYPE", "Hits", "Camera", "Context",
-    "default_context", "Partial", "check_image_path", "write_image", "Renderer", "Scene", "SceneFile", "load", "Mesh", "tessellate",
-    "INVALID_ID", "version",
+    "UnknownKeyError", "UnsupportedError", "Warning", "HIT_DTYPE", "RAY_DTYPE", "Hits", "Camera",
+    "Context", "default_context", "Partial", "check_image_path", "write_image", "Renderer",
+    "Scene", "SceneFile", "load", "load_dict", "load_file", "load_string", "render", "Mesh",
+    "tessellate", "INVALID_ID", "version",
 ]

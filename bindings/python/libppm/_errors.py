@@ -6,6 +6,7 @@ index at fault. The classes also derive from the matching built-in exception whe
 (``ValueError`` for invalid arguments, ``MemoryError``), so generic handlers catch them too.
 """
 import enum
+import warnings
 
 
 class Status(enum.IntEnum):
@@ -40,6 +41,11 @@ class InvalidArgumentError(Error, ValueError):
     status = Status.INVALID_ARGUMENT
 
 
+class UnknownKeyError(InvalidArgumentError, TypeError):
+    """An unknown setting name, e.g. a mistyped keyword argument: also a ``TypeError``, as
+    Python raises for an unexpected keyword. The message lists the known names."""
+
+
 class InvalidOperationError(Error):
     """A call not allowed in the object's state, e.g. a query before commit."""
 
@@ -58,6 +64,10 @@ class FileError(Error, OSError):
     """A file could not be opened, read or written (``PPM_ERROR_IO``)."""
 
     status = Status.IO
+
+
+class FileNotFoundError(FileError, FileNotFoundError):  # noqa: A001 - both meanings hold
+    """A file that libppm was asked to read does not exist (``errno.ENOENT``)."""
 
 
 class ParseError(Error):
@@ -89,6 +99,21 @@ _BY_STATUS = {
 }
 
 
-def _class_for_status(status):
-    """The exception class of a C status (called by the extension module)."""
+def _class_for_status(status, message=""):
+    """The exception class of a C status and message (called by the extension module): the
+    status's class, refined where the message says more (a missing file, an unknown key)."""
+    if status == Status.IO and ("No such file or directory" in message or ": file not found: " in message):
+        return FileNotFoundError
+    if status == Status.INVALID_ARGUMENT and message.startswith("unknown "):
+        return UnknownKeyError
     return _BY_STATUS.get(status, Error)
+
+
+class Warning(UserWarning):  # noqa: A001 - libppm.Warning, as libppm.Error
+    """What libppm skipped or substituted in an input (a vertex colour, an unsupported
+    element read leniently), located as ``file:line:column: what``."""
+
+
+def _warn(message):
+    """Issues a libppm warning (called by the extension module)."""
+    warnings.warn(message, Warning, stacklevel=2)

@@ -1,6 +1,9 @@
 """The look-at camera (``ppm_camera``)."""
+from __future__ import annotations
+
+import dataclasses
 from dataclasses import dataclass
-from typing import Tuple
+from typing import Any, FrozenSet, Tuple
 
 from ._arrays import vector
 
@@ -15,17 +18,30 @@ class Camera:
     right, y down; pixels are square. ``aperture_radius`` 0 is a pinhole; a thin lens
     (> 0) focuses at ``focus_distance`` along the view axis. Rays start ``near_clip``
     along the view axis (0 = at the lens).
+
+    The defaults are those of a scene file without a ``sensor`` and of Mitsuba 3: at the
+    origin looking along +z with +y up, the 39.6 degree field of view of a 50 mm lens on
+    36 mm film, a 768 x 576 film and ``near_clip`` 0.01.
     """
 
     origin: Vec3 = (0.0, 0.0, 0.0)
-    target: Vec3 = (0.0, 0.0, -1.0)
+    target: Vec3 = (0.0, 0.0, 1.0)
     up: Vec3 = (0.0, 1.0, 0.0)
-    fov: float = 45.0
-    width: int = 256
-    height: int = 256
+    fov: float = 39.597752709049864
+    width: int = 768
+    height: int = 576
     aperture_radius: float = 0.0
     focus_distance: float = 0.0
-    near_clip: float = 0.0
+    near_clip: float = 0.01
+
+    @staticmethod
+    def field_names() -> FrozenSet[str]:
+        """The names of the camera's fields."""
+        return frozenset(f.name for f in dataclasses.fields(Camera))
+
+    def replace(self, **fields: Any) -> "Camera":
+        """A copy with ``fields`` changed."""
+        return dataclasses.replace(self, **fields)
 
     def _as_tuple(self):
         """The tuple libppm._core takes, checked."""

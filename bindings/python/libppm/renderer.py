@@ -7,7 +7,7 @@ import time
 import numpy as np
 
 from . import _core
-from ._errors import CancelledError, Error, InvalidArgumentError
+from ._errors import CancelledError, Error, InvalidArgumentError, UnknownKeyError
 from ._handle import Handle
 from .camera import Camera
 
@@ -92,7 +92,7 @@ class Renderer(Handle):
                 return getter(key)
             except InvalidArgumentError as e:
                 last = e
-        raise InvalidArgumentError(f"unknown render setting {key!r} ({last.message})")
+        raise UnknownKeyError(f"unknown render setting {key!r} ({last.message})")
 
     @property
     def passes(self):

@@ -1,12 +1,17 @@
-// JSON scene files (docs/scene-format.md). Declared in ppm.h before libppm implemented them:
+// Scene files (docs/scene-format.md: JSON or Mitsuba 3 XML). Declared in ppm.h before libppm implemented them:
 // compiled only when the libppm this module links has them (CMakeLists.txt checks), and
 // libppm._core.has_scene_files says which.
 #include "camera.h"
 #include "objects.h"
 
+#include <nanobind/stl/map.h>
+#include <nanobind/stl/optional.h>
 #include <nanobind/stl/string.h>
 
+#include <map>
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace nb = nanobind;
 
@@ -25,13 +30,32 @@ struct SceneFile : Handle<ppm_scene_file, ppm_scene_file_retain, ppm_scene_file_
 void bind_scene_file(nb::module_ &m) {
     m.attr("has_scene_files") = true;
     nb::class_<SceneFile> cls(m, "SceneFile");
-    // Loading builds and commits the scene and reads textures: no GIL.
-    cls.def("__init__", [](SceneFile *self, Context &context, const std::string &path) {
+    // Loading builds and commits the scene and reads textures: no GIL. With `text`, the
+    // scene is that text, named `path` in messages, its file names relative to `folder`.
+    cls.def("__init__", [](SceneFile *self, Context &context, const std::string &path, std::optional<std::string> text,
+                           std::optional<std::string> folder, std::optional<std::string> format,
+                           const std::map<std::string, std::string> &defines, bool lenient) {
+        std::vector<const char *> names, values;
+        for (const auto &define : defines) {
+            names.push_back(define.first.c_str());
+            values.push_back(define.second.c_str());
+        }
+        ppm_scene_file_options options;
+        ppm_scene_file_options_init(&options);
+        options.format = format ? format->c_str() : nullptr;
+        options.define_names = names.data();
+        options.define_values = values.data();
+        options.define_count = names.size();
+        options.lenient = lenient ? 1 : 0;
         ppm_scene_file file = nullptr;
         {
             auto c = context.borrow();
             nb::gil_scoped_release unlocked;
-            check(ppm_scene_file_load(c.get(), path.c_str(), &file));
+            if (text)
+                check(ppm_scene_file_load_memory(c.get(), text->data(), text->size(), path.c_str(),
+                                                 folder ? folder->c_str() : nullptr, &options, &file));
+            else
+                check(ppm_scene_file_load_v2(c.get(), path.c_str(), &options, &file));
         }
         new (self) SceneFile(file, "SceneFile");
     });

@@ -10,7 +10,7 @@ namespace {
 // outlives the interpreter in a static.
 void raise(const char *class_name, const char *message, int status) {
     nb::object errors = nb::module_::import_("libppm._errors");
-    nb::object cls = status < 0 ? errors.attr(class_name) : errors.attr("_class_for_status")(status);
+    nb::object cls = status < 0 ? errors.attr(class_name) : errors.attr("_class_for_status")(status, nb::str(message));
     nb::object exc = cls(nb::str(message), status < 0 ? nb::none() : nb::cast(status));
     PyErr_SetObject(cls.ptr(), exc.ptr());
 }

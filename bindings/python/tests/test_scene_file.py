@@ -45,7 +45,10 @@ def test_load_scene_file(tmp_path):
     path = write_scene(tmp_path, passes=3, time=1.5)
     with libppm.load(path) as f:
         assert f.passes == 3 and f.time == 1.5
-        assert f.get_int("passes") == 3
+        assert f.get("passes") == 3 and isinstance(f.get("passes"), int)
+        assert f.get("time") == 1.5 and isinstance(f.get("time"), float)
+        with pytest.raises(TypeError, match="unknown scene file value 'pases'"):
+            f.get("pases")
         cam = f.camera
         assert (cam.width, cam.height) == (24, 16) and cam.fov == pytest.approx(39.3)
         np.testing.assert_allclose(cam.origin, (0, 1, 6.8))

@@ -1,0 +1,158 @@
+"""The one-call helpers: load_file (JSON and Mitsuba XML with parameters), load_dict,
+load_string, render; the exceptions Python code expects; camera defaults."""
+import dataclasses
+import json
+import os
+import warnings
+
+import numpy as np
+import pytest
+
+import libppm
+
+from conftest import REPO, TEAPOT
+
+BOX_XML = """<scene version="3.0.0">
+  <default name="res" value="20"/>
+  <default name="spp" value="3"/>
+  <sensor type="perspective">
+    <float name="fov" value="40"/>
+    <transform name="to_world"><lookat origin="0, -5, 1" target="0, 0, 1" up="0, 0, 1"/></transform>
+    <sampler type="independent"><integer name="sample_count" value="$spp"/></sampler>
+    <film type="hdrfilm"><integer name="width" value="$res"/><integer name="height" value="16"/></film>
+  </sensor>
+  <bsdf type="diffuse" id="grey"><rgb name="reflectance" value="0.5"/></bsdf>
+  <shape type="rectangle"><transform name="to_world"><scale value="3"/></transform><ref id="grey"/></shape>
+  <shape type="sphere"><point name="center" x="0" y="0" z="1"/><float name="radius" value="0.5"/>
+    <ref id="grey"/></shape>
+  <emitter type="point"><point name="position" x="0" y="-2" z="3"/><rgb name="intensity" value="10"/></emitter>
+</scene>
+"""
+
+SMALL_DICT = {
+    "integrator": {"photons_per_pass": 2000},
+    "sensor": {"fov": 40, "film": {"width": 12, "height": 10},
+               "to_world": {"look_at": {"origin": [0, -5, 1], "target": [0, 0, 1], "up": [0, 0, 1]}}},
+    "bsdfs": {"grey": {"type": "diffuse", "reflectance": 0.5}},
+    "emitters": [{"type": "point", "position": [0, -2, 3], "intensity": 10}],
+    "shapes": [{"type": "sphere", "center": [0, 0, 1], "radius": 0.5, "bsdf": "grey"},
+               {"type": "rectangle", "bsdf": "grey", "to_world": {"scale": 3}}],
+}
+
+
+@pytest.fixture
+def box_xml(tmp_path):
+    path = tmp_path / "box.xml"
+    path.write_text(BOX_XML)
+    return path
+
+
+def test_load_file_reads_xml_with_its_defaults_and_parameters(box_xml):
+    with libppm.load_file(box_xml) as f:
+        assert (f.camera.width, f.camera.height, f.passes) == (20, 16, 3)
+        assert f.camera.fov == pytest.approx(40)
+    with libppm.load_file(box_xml, res=8, spp=2) as f:  # Mitsuba's -D res=8 -D spp=2
+        assert (f.camera.width, f.passes) == (8, 2)
+    with pytest.raises(libppm.ParseError, match=r"box\.xml:\d+:\d+"):
+        libppm.load_file(box_xml, res="wide")
+    with pytest.raises(ValueError, match="apply to Mitsuba XML scene files only"):
+        libppm.load_file(REPO / "examples" / "scenes" / "teapot-cornell.json", spp=4)
+
+
+def test_lenient_xml_substitutes_with_a_python_warning(tmp_path):
+    path = tmp_path / "rough.xml"
+    path.write_text(BOX_XML.replace('<bsdf type="diffuse" id="grey"><rgb name="reflectance" value="0.5"/>',
+                                    '<bsdf type="hair" id="grey">'))
+    with pytest.raises(libppm.ParseError, match="hair"):
+        libppm.load_file(path)
+    with pytest.warns(libppm.Warning, match=r"rough\.xml:\d+:\d+: <bsdf>"):
+        f = libppm.load_file(path, lenient=True)
+    with f:
+        assert f.create_renderer(photons_per_pass=1000).render(1).mean() > 0
+
+
+def test_load_dict_and_load_string_render_what_they_say():
+    with libppm.load_dict(SMALL_DICT) as f:
+        assert (f.camera.width, f.camera.height) == (12, 10)
+        image = libppm.render(f, passes=2)
+    assert image.shape == (10, 12, 3) and image.dtype == np.float32 and image.mean() > 0
+    with libppm.load_string(json.dumps(SMALL_DICT)) as f:
+        assert libppm.render(f, passes=2, seed=0).shape == (10, 12, 3)
+    with libppm.load_string(BOX_XML, spp=5) as f:
+        assert (f.camera.width, f.passes) == (20, 5)
+
+    # File names inside are relative to `folder`.
+    teapot = {**SMALL_DICT, "shapes": [{"type": "bezier", "filename": TEAPOT.name, "bsdf": "grey"}]}
+    with libppm.load_dict(teapot, folder=TEAPOT.parent) as f:
+        assert f.scene.bounds[1][2] > f.scene.bounds[0][2]
+    with pytest.raises(libppm.FileNotFoundError, match=TEAPOT.name):
+        libppm.load_dict(teapot)
+
+
+def test_load_dict_errors_name_the_key():
+    bad = json.loads(json.dumps(SMALL_DICT))
+    bad["shapes"][0]["radius"] = -1
+    with pytest.raises(libppm.ParseError, match=r"shapes\[0\]\.radius"):
+        libppm.load_dict(bad)
+    with pytest.raises(TypeError, match="not JSON data"):
+        libppm.load_dict({"shapes": [object()]})
+    with pytest.raises(TypeError, match="not JSON data"):
+        libppm.load_dict({"sensor": {"fov": float("nan")}})
+
+
+def test_render_one_call_is_deterministic_in_the_seed(tmp_path):
+    path = tmp_path / "small.json"
+    path.write_text(json.dumps(SMALL_DICT))
+    a = libppm.render(path, passes=2, seed=3)
+    b = libppm.render(str(path), passes=2, seed=3)
+    c = libppm.render(path, passes=2, seed=4)
+    assert np.array_equal(a, b) and not np.array_equal(a, c)
+    # A time budget alone renders at least one pass and stops.
+    assert libppm.render(path, time=0.01).mean() > 0
+    with pytest.raises(ValueError):
+        libppm.render(path, passes=0)
+
+
+def test_python_exceptions_where_python_raises_them(tmp_path):
+    missing = tmp_path / "missing.json"
+    with pytest.raises(FileNotFoundError) as info:
+        libppm.load_file(missing)
+    assert isinstance(info.value, libppm.FileError) and isinstance(info.value, OSError)
+    assert isinstance(info.value, libppm.Error) and "missing.json" in str(info.value)
+
+    path = tmp_path / "small.json"
+    path.write_text(json.dumps(SMALL_DICT))
+    # A mistyped keyword is a TypeError, as for any Python function, and a libppm.Error.
+    with pytest.raises(TypeError, match="photns_per_pass") as info:
+        libppm.render(path, passes=1, photns_per_pass=1000)
+    assert isinstance(info.value, libppm.UnknownKeyError) and isinstance(info.value, libppm.Error)
+    with libppm.load_file(path) as f, f.create_renderer() as renderer:
+        with pytest.raises(TypeError, match="alhpa"):
+            renderer.set(alhpa=0.5)
+        with pytest.raises(TypeError, match="alhpa"):
+            renderer.get("alhpa")
+        with pytest.raises(ValueError):  # a known key with a bad value stays a ValueError
+            renderer.set(alpha=-1.0)
+
+
+def test_camera_defaults_are_those_of_a_scene_file_without_sensor(tmp_path):
+    scene = {key: value for key, value in SMALL_DICT.items() if key != "sensor"}
+    with libppm.load_dict(scene) as f:
+        from_file = f.camera
+    default = libppm.Camera()
+    for field in dataclasses.fields(libppm.Camera):
+        np.testing.assert_allclose(getattr(from_file, field.name), getattr(default, field.name),
+                                   err_msg=field.name)
+
+
+@pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")
+def test_warnings_can_be_errors_without_breaking_the_load(box_xml):
+    # A filter that turns libppm warnings into errors must not crash the extension.
+    path = box_xml.parent / "hair.xml"
+    path.write_text(BOX_XML.replace('<bsdf type="diffuse" id="grey"><rgb name="reflectance" value="0.5"/>',
+                                    '<bsdf type="hair" id="grey">'))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", libppm.Warning)
+        with libppm.load_file(path, lenient=True) as f:
+            assert f.camera.width == 20
+    assert os.path.exists(path)
