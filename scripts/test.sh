@@ -9,9 +9,9 @@
 # 3. Installs the Release build into a temporary prefix and checks the package: files, SONAME,
 #    exported symbols, and the examples/ consumer built against the installed library with
 #    find_package(ppm) and with pkg-config.
-# 4. Python: pip-installs bindings/python (the package libppm) against that prefix into a
-#    temporary venv with Dask and Ray and runs its pytest tests (each test counts in the
-#    summary; a failed pip install counts as one).
+# 4. Python: builds the wheel of the package libppm with `pip wheel .`, installs it into a
+#    temporary venv with Dask, Ray and mypy, checks that libppm.so.0 sits beside the extension,
+#    and runs the pytest tests (each test counts in the summary; a failed build counts as one).
 # 5. scripts/tsan.sh: the ThreadSanitizer build in build-tsan/ and the tests labelled
 #    "threads" under it, every report fatal (counts as one check); --no-tsan skips it.
 # Exits non-zero if anything failed; the last line sums up ctest tests and package checks.
@@ -247,24 +247,34 @@ else
 fi
 
 # ---------------------------------------------------------------------------------------------
-ppm_step "Python bindings: pip install ./bindings/python against the install, pytest"
+ppm_step "Python: pip wheel . (libppm with its extension), installed into a fresh venv, pytest"
 # Debian's interpreter, not whichever python3 comes first in PATH (e.g. pyenv's): the venv sees
 # Debian's numpy, pytest and matplotlib through --system-site-packages.
 python_started=$SECONDS
 python=${PPM_PYTHON:-/usr/bin/python3}
 venv="$work/venv"
-# The build requirements from PyPI once, then the package built without isolation against
-# the installed libppm (found through CMAKE_PREFIX_PATH, loaded through an rpath).
-# The render-farm engines too (the package's [dask] and [ray] extras); a test whose engine
-# cannot be installed is skipped and says why.
+# The wheel is built as a user's `pip wheel .` builds it (build requirements from PyPI in an
+# isolated environment, the C library compiled with it), then installed with the render-farm
+# engines (the [dask] and [ray] extras) and mypy; a test whose engine or checker cannot be
+# installed is skipped and says why.
 if "$python" -m venv --system-site-packages "$venv" &&
-  "$venv/bin/pip" install -q "scikit-build-core>=0.10" "nanobind>=2.0" &&
-  { "$venv/bin/pip" install -q "dask[distributed]" tqdm ray ||
-    echo "warning: the render-farm engines (dask, ray) could not be installed"; } &&
-  CMAKE_PREFIX_PATH="$prefix" CMAKE_BUILD_PARALLEL_LEVEL="$PPM_JOBS" \
-    "$venv/bin/pip" install --no-build-isolation ./bindings/python >"$work/pip.log" 2>&1; then
-  # From the repository root, so that bindings/python/ppm does not shadow the installed package.
-  "$venv/bin/python" -m pytest -p no:cacheprovider -q -rs bindings/python/tests 2>&1 |
+  CMAKE_BUILD_PARALLEL_LEVEL="$PPM_JOBS" "$venv/bin/pip" wheel --no-deps -w "$work/wheel" . \
+    >"$work/pip.log" 2>&1 &&
+  "$venv/bin/pip" install -q "$work"/wheel/libppm-*.whl >>"$work/pip.log" 2>&1 &&
+  { "$venv/bin/pip" install -q "dask[distributed]" tqdm ray mypy ||
+    echo "warning: the render-farm engines (dask, ray) or mypy could not be installed"; }; then
+  wheel=$(ls "$work"/wheel/libppm-*.whl)
+  echo "wheel: $(basename "$wheel"), $(($(stat -c %s "$wheel") / 1024)) KiB"
+  site=$("$venv/bin/python" -c 'import libppm, os; print(os.path.dirname(libppm.__file__))')
+  module=$(ls "$site"/_core*.so)
+  if [[ -f "$site/libppm.so.0" ]] && readelf -d "$module" | grep -q 'R.*PATH.*\[\$ORIGIN\]' &&
+    ! readelf -d "$module" | grep -q "$PPM_ROOT"; then
+    pass "python wheel: libppm.so.0 beside the extension, found through \$ORIGIN"
+  else
+    fail "python wheel: libppm.so.0 missing beside the extension, or an rpath other than \$ORIGIN"
+  fi
+  # From the repository root (the tests read its data), with no loader path.
+  env -u LD_LIBRARY_PATH "$venv/bin/python" -m pytest -p no:cacheprovider -q -rs bindings/python/tests 2>&1 |
     tee "$work/pytest.log"
   # "3 failed, 48 passed, 5 skipped in 4.12s"
   line=$(grep -E '^[0-9]+ [a-z]+.* in [0-9.]+s' "$work/pytest.log" | tail -n 1)
@@ -279,7 +289,7 @@ if "$python" -m venv --system-site-packages "$venv" &&
   fi
 else
   tail -n 40 "$work/pip.log" 2>/dev/null
-  fail "python: venv or pip install ./bindings/python"
+  fail "python: venv, pip wheel . or installing the wheel"
 fi
 echo "python step: $((SECONDS - python_started)) s"
 

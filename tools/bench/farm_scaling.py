@@ -22,7 +22,7 @@ C >> W keeps the workers busy until the end.
   python3 tools/bench/farm_scaling.py [--scene examples/scenes/teapot-cornell.json]
       [--passes 16] [--chunk 2] [--workers 2] [--photons 50000] [--target 1920x1080]
 
-Needs the libppm Python package with Dask (pip install "./bindings/python[dask]").
+Needs the libppm Python package with Dask (pip install ".[dask]" from the repository root).
 """
 import argparse
 import dataclasses
