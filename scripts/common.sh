@@ -18,7 +18,7 @@ PPM_DEBIAN_PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libembree-dev libtbb-dev libcmocka-dev clang-format
   libopenimageio-dev libopenexr-dev openimageio-tools
-  libcgal-dev libgmp-dev libmpfr-dev libnanoflann-dev libjsoncpp-dev zlib1g-dev libpugixml-dev
+  libcgal-dev libgmp-dev libmpfr-dev libnanoflann-dev libjsoncpp-dev zlib1g-dev libpugixml-dev libcli11-dev
   python3 python3-venv python3-pip python3-dev python3-numpy python3-pytest python3-matplotlib
 )
 

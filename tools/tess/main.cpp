@@ -2,6 +2,8 @@
 // through libppm's public API, and reports how far the mesh lies from the surface.
 #include <ppm/ppm.h>
 
+#include "common/command_line.h"
+
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -20,37 +22,20 @@
 
 namespace {
 
-const char *const usage_text = "usage: ppm-tess INPUT -o OUTPUT.obj [options]\n"
-                               "Tessellates bicubic Bezier patches into triangles whose distance from the surface is\n"
-                               "measured and held within a tolerance, or into a uniform grid. INPUT is a .bpt file or\n"
-                               "a scene file (.json, docs/scene-format.md): then every Bezier shape, placed by its\n"
-                               "to_world, goes into one mesh.\n"
-                               "options:\n"
-                               "  -o, --output PATH   output file: OBJ (v, vt, vn, f v/vt/vn; seam vertices welded;\n"
-                               "                      vt = patch (u, 1 - v), the OBJ convention),\n"
-                               "                      or PLY when PATH ends in .ply (no other extension)\n"
-                               "  --tolerance E       largest distance from the surface, absolute (default: 1e-3\n"
-                               "                      of the bounding-box diagonal of the control points)\n"
-                               "  --relative          E is relative to that diagonal\n"
-                               "  --grid N            uniform N x N quads per patch instead (1..4096)\n"
-                               "  --ply               write ASCII PLY (x y z nx ny nz u v per vertex; seam vertices\n"
-                               "                      repeated once per patch, at identical positions)\n"
-                               "  -h, --help          this text\n"
-                               "  --version           print the libppm version\n"
-                               "The triangle count and the measured deviation (absolute and relative) go to stderr.\n"
-                               "Exit status: 0 ok, 1 usage error, 2 runtime error.\n";
+const char *const description =
+    "Tessellates bicubic Bezier patches into triangles whose distance from the surface is\n"
+    "measured and held within a tolerance, or into a uniform grid. INPUT is a .bpt file or a\n"
+    "scene file (.json or Mitsuba 3 .xml, docs/scene-format.md): then every Bezier shape,\n"
+    "placed by its to_world, goes into one mesh.";
+const char *const footer = "The triangle count and the measured deviation (absolute and relative) go to stderr.\n"
+                           "Exit status: 0 ok, 1 usage error, 2 runtime error.";
 
 struct Options {
     std::string input, output;
     double tolerance = 1e-3;
     bool relative = true; // the default tolerance is relative; an explicit one is absolute
-    bool tolerance_given = false, relative_given = false;
     uint32_t grid = 0;
     bool ply = false;
-};
-
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
 };
 
 bool ends_with(const std::string &text, const char *suffix) {
@@ -58,57 +43,44 @@ bool ends_with(const std::string &text, const char *suffix) {
     return text.size() >= n && text.compare(text.size() - n, n, suffix) == 0;
 }
 
-double parse_number(const std::string &option, const char *text) {
-    char *end = nullptr;
-    const double value = std::strtod(text, &end);
-    if (end == text || *end != '\0' || !std::isfinite(value))
-        throw UsageError(option + " needs a finite number, not '" + text + "'");
-    return value;
+void add_options(CLI::App &app, Options &o, CLI::Option *&tolerance, CLI::Option *&relative, CLI::Option *&grid) {
+    app.add_option("INPUT", o.input, "a .bpt file or a scene file")->required()->type_name("");
+    app.add_option("-o,--output", o.output,
+                   "OBJ (v, vt, vn, f v/vt/vn; seam vertices welded;\n"
+                   "vt = patch (u, 1 - v), the OBJ convention),\n"
+                   "or PLY when PATH ends in .ply")
+        ->required()
+        ->type_name("PATH");
+    tolerance = app.add_option("--tolerance", o.tolerance,
+                               "largest distance from the surface, absolute\n"
+                               "(default: 1e-3 of the bounding-box diagonal of\n"
+                               "the control points)")
+                    ->check(CLI::PositiveNumber)
+                    ->type_name("E");
+    relative = app.add_flag("--relative", "E is relative to that diagonal");
+    grid = app.add_option("--grid", o.grid, "uniform N x N quads per patch instead (1..4096)")
+               ->check(CLI::Range(1, 4096))
+               ->type_name("N");
+    app.add_flag("--ply", o.ply,
+                 "write ASCII PLY (x y z nx ny nz u v per vertex;\n"
+                 "seam vertices repeated once per patch)");
+    grid->excludes(tolerance)->excludes(relative);
 }
 
-Options parse_arguments(int argc, char **argv) {
-    Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        const auto value = [&]() -> const char * {
-            if (i + 1 >= argc) throw UsageError(arg + " needs a value");
-            return argv[++i];
-        };
-        if (arg == "-o" || arg == "--output") {
-            o.output = value();
-        } else if (arg == "--tolerance") {
-            o.tolerance = parse_number(arg, value());
-            o.tolerance_given = true;
-            if (!(o.tolerance > 0)) throw UsageError("--tolerance must be > 0");
-        } else if (arg == "--relative") {
-            o.relative_given = true;
-        } else if (arg == "--grid") {
-            const double grid = parse_number(arg, value());
-            if (grid < 1 || grid > 4096 || grid != std::floor(grid))
-                throw UsageError("--grid needs an integer in 1..4096");
-            o.grid = static_cast<uint32_t>(grid);
-        } else if (arg == "--ply") {
-            o.ply = true;
-        } else if (!arg.empty() && arg[0] == '-') {
-            throw UsageError("unknown option '" + arg + "'");
-        } else if (o.input.empty()) {
-            o.input = arg;
-        } else {
-            throw UsageError("more than one input file ('" + o.input + "', '" + arg + "')");
-        }
-    }
-    if (o.input.empty()) throw UsageError("no input file");
-    if (o.output.empty()) throw UsageError("no output file (-o)");
-    if (o.grid && (o.tolerance_given || o.relative_given))
-        throw UsageError("--grid and --tolerance/--relative exclude each other");
-    if (o.tolerance_given) o.relative = o.relative_given;
+// What CLI11 cannot check alone: the output's format against its name.
+void check_output(Options &o, bool tolerance_given, bool relative_given) {
+    if (tolerance_given) o.relative = relative_given;
     const bool ply_name = ends_with(o.output, ".ply") || ends_with(o.output, ".PLY");
     const bool obj_name = ends_with(o.output, ".obj") || ends_with(o.output, ".OBJ");
     if (!ply_name && !obj_name)
-        throw UsageError("output '" + o.output + "' must end in .obj or .ply (the formats ppm-tess writes)");
-    if (o.ply && obj_name) throw UsageError("--ply asks for PLY, but the output '" + o.output + "' ends in .obj");
+        throw ppm_tools::UsageError("output '" + o.output + "' must end in .obj or .ply (the formats ppm-tess writes)");
+    if (o.ply && obj_name)
+        throw ppm_tools::UsageError("--ply asks for PLY, but the output '" + o.output + "' ends in .obj");
     o.ply = ply_name;
-    return o;
+}
+
+bool is_scene_file(const std::string &path) {
+    return ends_with(path, ".json") || ends_with(path, ".JSON") || ends_with(path, ".xml") || ends_with(path, ".XML");
 }
 
 void check(ppm_status status, const std::string &what) {
@@ -117,7 +89,7 @@ void check(ppm_status status, const std::string &what) {
 }
 
 // The patches of a .bpt file, or the world-space patches of every Bezier shape of a scene file
-// (.json), read by libppm (whose errors name the file, line and key).
+// (.json or .xml), read by libppm (whose errors name the file, line and key).
 std::vector<double> read_patches(const std::string &path) {
     ppm_context context = nullptr;
     ppm_scene scene = nullptr;
@@ -133,7 +105,7 @@ std::vector<double> read_patches(const std::string &path) {
         }
     } release{context, scene, file};
     check(ppm_context_create(&context), "creating a context");
-    if (ends_with(path, ".json")) {
+    if (is_scene_file(path)) {
         check(ppm_scene_file_load(context, path.c_str(), &file), "reading the scene");
         check(ppm_scene_file_get_scene(file, &scene), path);
     } else {
@@ -303,27 +275,22 @@ int run(const Options &o) {
 } // namespace
 
 int main(int argc, char **argv) {
-    for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "-h") || !std::strcmp(argv[i], "--help")) {
-            std::fputs(usage_text, stdout);
-            return 0;
-        }
-        if (!std::strcmp(argv[i], "--version")) {
-            std::printf("%s\n", ppm_version_string());
-            return 0;
-        }
-    }
+    CLI::App app(description, "ppm-tess");
+    ppm_tools::configure(app, footer);
     Options options;
+    CLI::Option *tolerance = nullptr, *relative = nullptr, *grid = nullptr;
+    add_options(app, options, tolerance, relative, grid);
+    const int parsed = ppm_tools::parse(app, argc, argv);
+    if (parsed >= 0) return parsed;
     try {
-        options = parse_arguments(argc, argv);
-    } catch (const UsageError &e) {
-        std::fprintf(stderr, "ppm-tess: %s\n%s", e.what(), usage_text);
-        return 1;
+        check_output(options, tolerance->count() > 0, relative->count() > 0);
+    } catch (const ppm_tools::UsageError &e) {
+        return ppm_tools::report_usage_error(app, e.what());
     }
     try {
         return run(options);
     } catch (const std::exception &e) {
         std::fprintf(stderr, "ppm-tess: %s\n", e.what());
-        return 2;
+        return ppm_tools::kExitRuntime;
     }
 }
