@@ -93,7 +93,8 @@ expect 1 "is empty" "$render" "$scene" --passes 6 --pass-range 3:3 --partial p.p
 expect 1 "not --set mode=sppm" "$render" "$scene" --passes 6 --partial p.ppmpart --set mode=sppm
 expect 1 "no partial render given" "$merge" -o x.exr
 expect 1 "no output given" "$merge" a.ppmpart
-expect 1 "unknown option" "$merge" a.ppmpart -o x.exr --frobnicate
+expect 1 "--frobnicate" "$merge" a.ppmpart -o x.exr --frobnicate
+expect 1 "--layers" "$merge" a.ppmpart -o x.exr --layers radius,colour
 expect 2 "cannot write this format" "$merge" a.ppmpart -o x.unknownformat
 
 if ((failures > 0)); then

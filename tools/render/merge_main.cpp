@@ -3,6 +3,7 @@
 // passes would give, bit for bit, whatever the split and order.
 #include <ppm/ppm.h>
 
+#include "common/command_line.h"
 #include "image_writer.h"
 
 #include <unistd.h>
@@ -18,83 +19,49 @@ using namespace ppm_render;
 
 namespace {
 
-const char *const usage_text =
-    "usage: ppm-merge PARTIAL... -o OUTPUT [-o OUTPUT]... [options]\n"
+const char *const description =
     "Merges partial renders (ppm-render --pass-range A:B --partial PATH) of one render into\n"
     "its image. Partials of another scene, camera or settings, or with a pass in common, are\n"
     "refused. Merging an incomplete set writes the image of the passes present (their mean)\n"
-    "and names the missing ones.\n"
-    "\n"
-    "  -o, --output PATH     image to write, repeatable: .exr (linear float radiance), .png,\n"
-    "                        .jpg, .tif (sRGB 8-bit); written atomically\n"
-    "  --exposure EV         scales 8-bit images by 2^EV before sRGB encoding (default 0)\n"
-    "  --layers LIST         extra EXR channels, comma separated: radius (mean gather radius),\n"
-    "                        photons (photons found in all passes)\n"
-    "  --save-partial PATH   also save the merged partial (to merge further, or to resume)\n"
-    "  --require-complete    exit 2 without writing when passes of the render are missing\n"
-    "  -q, --quiet           no progress, no summary (errors and warnings are still printed)\n"
-    "  --version             print the libppm version\n"
-    "  -h, --help            this text\n"
-    "Exit status: 0 done, 1 usage error, 2 runtime error (a bad, foreign or overlapping\n"
-    "partial, an unwritable image, missing passes with --require-complete).\n";
-
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+    "and names the missing ones.";
+const char *const footer = "Exit status: 0 done, 1 usage error, 2 runtime error (a bad, foreign or overlapping\n"
+                           "partial, an unwritable image, missing passes with --require-complete).";
 
 struct Options {
     std::vector<std::string> partials, outputs, layers;
     std::string save_partial;
     double exposure = 0;
-    bool require_complete = false, quiet = false, help = false, version = false;
+    bool require_complete = false, quiet = false;
 };
 
-Options parse_options(int argc, char **argv) {
-    Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        const auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw UsageError(arg + " needs a value");
-            return argv[++i];
-        };
-        if (arg == "-h" || arg == "--help") {
-            o.help = true;
-        } else if (arg == "--version") {
-            o.version = true;
-        } else if (arg == "-q" || arg == "--quiet") {
-            o.quiet = true;
-        } else if (arg == "-o" || arg == "--output") {
-            o.outputs.push_back(value());
-        } else if (arg == "--exposure") {
-            const std::string text = value();
-            char *end = nullptr;
-            o.exposure = std::strtod(text.c_str(), &end);
-            if (end == text.c_str() || *end != '\0' || !std::isfinite(o.exposure) || std::fabs(o.exposure) > 100)
-                throw UsageError("--exposure needs a number of stops in [-100, 100], not '" + text + "'");
-        } else if (arg == "--layers") {
-            std::string list = value() + ",";
-            for (std::size_t start = 0, comma; (comma = list.find(',', start)) != std::string::npos;
-                 start = comma + 1) {
-                const std::string layer = list.substr(start, comma - start);
-                if (layer.empty()) continue;
-                if (layer != "radius" && layer != "photons")
-                    throw UsageError("--layers: unknown layer '" + layer + "' (layers: radius, photons)");
-                o.layers.push_back(layer);
-            }
-        } else if (arg == "--save-partial") {
-            o.save_partial = value();
-        } else if (arg == "--require-complete") {
-            o.require_complete = true;
-        } else if (!arg.empty() && arg[0] == '-') {
-            throw UsageError("unknown option '" + arg + "'");
-        } else {
-            o.partials.push_back(arg);
-        }
-    }
-    if (o.help || o.version) return o;
-    if (o.partials.empty()) throw UsageError("no partial render given");
-    if (o.outputs.empty() && o.save_partial.empty()) throw UsageError("no output given (-o IMAGE or --save-partial)");
-    return o;
+void add_options(CLI::App &app, Options &o) {
+    app.add_option("PARTIAL", o.partials, "partial renders (.ppmpart) of one render")->type_name("");
+    app.add_option("-o,--output", o.outputs,
+                   "image to write, repeatable: .exr (linear float radiance),\n"
+                   ".png, .jpg, .tif (sRGB 8-bit); written atomically")
+        ->type_name("PATH")
+        ->allow_extra_args(false); // one path per -o: a partial after it stays a partial
+    app.add_option("--exposure", o.exposure, "scales 8-bit images by 2^EV before sRGB encoding\n(default 0)")
+        ->check(CLI::Range(-100.0, 100.0))
+        ->type_name("EV");
+    app.add_option("--layers", o.layers,
+                   "extra EXR channels, comma separated: radius (mean\n"
+                   "gather radius), photons (photons found in all passes)")
+        ->delimiter(',')
+        ->check(CLI::IsMember({"radius", "photons"}))
+        ->type_name("LIST")
+        ->allow_extra_args(false);
+    app.add_option("--save-partial", o.save_partial, "also save the merged partial (to merge further, or\nto resume)")
+        ->type_name("PATH");
+    app.add_flag("--require-complete", o.require_complete,
+                 "exit 2 without writing when passes of the render\nare missing");
+    app.add_flag("-q,--quiet", o.quiet, "no progress, no summary (errors and warnings are\nstill printed)");
+}
+
+void check_options(const Options &o) {
+    if (o.partials.empty()) throw ppm_tools::UsageError("no partial render given");
+    if (o.outputs.empty() && o.save_partial.empty())
+        throw ppm_tools::UsageError("no output given (-o IMAGE or --save-partial)");
 }
 
 struct RuntimeError {
@@ -199,20 +166,16 @@ int merge(const Options &options) {
 } // namespace
 
 int main(int argc, char **argv) {
+    CLI::App app(description, "ppm-merge");
+    ppm_tools::configure(app, footer);
     Options options;
+    add_options(app, options);
+    const int parsed = ppm_tools::parse(app, argc, argv);
+    if (parsed >= 0) return parsed;
     try {
-        options = parse_options(argc, argv);
-    } catch (const UsageError &e) {
-        std::fprintf(stderr, "ppm-merge: %s\nTry 'ppm-merge -h' for help.\n", e.what());
-        return 1;
-    }
-    if (options.help) {
-        std::fputs(usage_text, stdout);
-        return 0;
-    }
-    if (options.version) {
-        std::printf("ppm-merge (libppm %s)\n", ppm_version_string());
-        return 0;
+        check_options(options);
+    } catch (const ppm_tools::UsageError &e) {
+        return ppm_tools::report_usage_error(app, e.what());
     }
     try {
         return merge(options);
@@ -221,5 +184,5 @@ int main(int argc, char **argv) {
     } catch (const std::exception &e) {
         std::fprintf(stderr, "ppm-merge: %s\n", e.what());
     }
-    return 2;
+    return ppm_tools::kExitRuntime;
 }
