@@ -13,19 +13,25 @@ the run's own final image would force the last point to zero.) The teapot is coa
 
 Writes the figure (image, error curve) to --output and prints the curve as a table.
 """
+from __future__ import annotations
+
 import argparse
 import pathlib
 import sys
+from typing import Any, List, Mapping, Tuple
 
 import numpy as np
+import numpy.typing as npt
 
 import libppm
 
 REPO = pathlib.Path(__file__).resolve().parents[3]
 TEAPOT = REPO / "tests" / "data" / "teapot.bpt"
 
+Image = npt.NDArray[np.float32]
 
-def build_scene(teapot_path):
+
+def build_scene(teapot_path: str) -> libppm.Scene:
     """A 10 x 10 x 10 box (z up, open towards -y) with red and green side walls, the teapot
     on the floor and a 3 x 3 area light under the ceiling."""
     scene = libppm.Scene()
@@ -51,23 +57,24 @@ def build_scene(teapot_path):
     return scene
 
 
-def make_renderer(scene, args, seed):
+def make_renderer(scene: libppm.Scene, args: argparse.Namespace, seed: int) -> libppm.Renderer:
     camera = libppm.Camera(origin=(0, -19, 5), target=(0, 0, 4), up=(0, 0, 1), fov=38,
                         width=args.width, height=args.height)
     return libppm.Renderer(scene, camera, photons_per_pass=args.photons, seed=seed)
 
 
-def relative_rms(image, reference):
+def relative_rms(image: Image, reference: Image) -> float:
     return float(np.sqrt(np.mean((image - reference) ** 2)) / np.mean(reference))
 
 
-def run(scene, args):
+def run(scene: libppm.Scene,
+        args: argparse.Namespace) -> Tuple[npt.NDArray[np.float64], Image, Image]:
     """The measured run: (seconds, passes, error) after each pass, and the final image."""
     reference = reference_image(scene, args)
-    points = []
+    points: List[Tuple[float, int, float]] = []
     with make_renderer(scene, args, seed=1) as renderer:
 
-        def record(index, stats):
+        def record(index: int, stats: Mapping[str, Any]) -> None:
             # The clock includes reading the image and this error: about a millisecond.
             err = relative_rms(renderer.image(), reference)
             points.append((stats["elapsed"], stats["passes"], err))
@@ -78,10 +85,11 @@ def run(scene, args):
     return np.array(points), image, reference
 
 
-def reference_image(scene, args):
+def reference_image(scene: libppm.Scene, args: argparse.Namespace) -> Image:
     if args.reference and pathlib.Path(args.reference).exists():
         print(f"reference: {args.reference}", file=sys.stderr)
-        return np.load(args.reference)
+        reference: Image = np.load(args.reference)
+        return reference
     print(f"reference: {args.reference_time:g} s of rendering (seed 2) ...", file=sys.stderr)
     with make_renderer(scene, args, seed=2) as renderer:
         image = renderer.render(10**6, time_limit=args.reference_time)
@@ -92,17 +100,17 @@ def reference_image(scene, args):
     return image
 
 
-def to_srgb(image):
+def to_srgb(image: Image) -> npt.NDArray[np.uint8]:
     """Exposure to the 99th percentile, sRGB transfer, 8-bit."""
     scaled = np.clip(image / np.percentile(image, 99), 0, 1)
     srgb = np.where(scaled <= 0.0031308, 12.92 * scaled, 1.055 * scaled ** (1 / 2.4) - 0.055)
     return (srgb * 255 + 0.5).astype(np.uint8)
 
 
-def plot(points, image, args):
-    import matplotlib
+def plot(points: npt.NDArray[np.float64], image: Image, args: argparse.Namespace) -> None:
+    import matplotlib  # type: ignore[import-untyped, unused-ignore]
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # type: ignore[import-untyped, unused-ignore]
 
     fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2), gridspec_kw={"width_ratios": [1, 1.2]})
     left.imshow(to_srgb(image))
@@ -123,8 +131,8 @@ def plot(points, image, args):
     fig.savefig(args.output, dpi=110)
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+def main() -> None:
+    parser = argparse.ArgumentParser(description=(__doc__ or "").split("\n\n")[0],
                                      formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     parser.add_argument("-o", "--output", default="teapot_convergence.png", help="PNG to write")
     parser.add_argument("--time", type=float, default=20, help="seconds of the measured run")

@@ -20,18 +20,14 @@ from .quick_render import render
 from .scene_file import SceneFile, load, load_dict, load_file, load_string
 from .tessellate import Mesh, tessellate
 
-__version__ = "0.1.0"
+#: The version of the package, which is that of the libppm inside it.
+__version__: str = _core.version_string()
 
 #: geom_id (and prim_id) of a miss: 0xFFFFFFFF.
 INVALID_ID = _core.INVALID_ID
 
-#: Whether the libppm this module was built against implements scene files
-#: (:func:`load`) and checkpoints (:meth:`Renderer.save_checkpoint`).
-_has_scene_files = _core.has_scene_files
-_has_checkpoints = _core.has_checkpoints
 
-
-def version():
+def version() -> str:
     """Version string of the libppm actually loaded, "major.minor.patch"."""
     return _core.version_string()
 

@@ -5,16 +5,25 @@ converted to C-contiguous float64; complex, string and object input is a TypeErr
 shape a ValueError. Values are not checked here: NaN and infinities go to libppm, which
 rejects them with an InvalidArgumentError naming the element.
 """
+from __future__ import annotations
+
+from typing import Any, Optional, Sequence, Tuple
+
 import numpy as np
+import numpy.typing as npt
+
+from ._typing import ArrayLike, ColorLike, Float64Array, UInt32Array
+
+Shape = Sequence[Optional[int]]
 
 _REAL_KINDS = "biuf"
 
 
-def _describe(shape):
+def _describe(shape: Shape) -> str:
     return "(" + ", ".join("n" if d is None else str(d) for d in shape) + ")"
 
 
-def _convert(value, name, dtype):
+def _convert(value: ArrayLike, name: str, dtype: npt.DTypeLike) -> npt.NDArray[Any]:
     try:
         array = np.asarray(value)
     except (TypeError, ValueError) as e:  # ragged nested lists, for one
@@ -25,7 +34,7 @@ def _convert(value, name, dtype):
     return np.asarray(array, dtype=dtype, order="C")
 
 
-def real_array(value, name, *shapes):
+def real_array(value: ArrayLike, name: str, *shapes: Shape) -> Float64Array:
     """`value` as a C-contiguous float64 array of one of `shapes` (None = any length)."""
     array = _convert(value, name, np.float64)
     for shape in shapes:
@@ -36,12 +45,12 @@ def real_array(value, name, *shapes):
     raise ValueError(f"{name}: expected shape {expected}, got {array.shape}")
 
 
-def vector(value, name, size=3):
+def vector(value: ArrayLike, name: str, size: int = 3) -> Tuple[float, ...]:
     """A tuple of `size` floats."""
     return tuple(float(x) for x in real_array(value, name, (size,)))
 
 
-def color(value, name):
+def color(value: ColorLike, name: str) -> Tuple[float, ...]:
     """An RGB triple; a single number means grey."""
     array = _convert(value, name, np.float64)
     if array.ndim == 0:
@@ -51,7 +60,7 @@ def color(value, name):
     return tuple(float(x) for x in array)
 
 
-def index_array(value, name, shape):
+def index_array(value: ArrayLike, name: str, shape: Shape) -> UInt32Array:
     """A C-contiguous uint32 array of `shape` from integer input (no floats: no rounding)."""
     try:
         array = np.asarray(value)
@@ -68,7 +77,7 @@ def index_array(value, name, shape):
     return np.ascontiguousarray(array, dtype=np.uint32)
 
 
-def uint32(value, name):
+def uint32(value: Any, name: str) -> int:
     """A non-negative integer that fits a uint32 (geometry and material ids)."""
     try:
         number = int(value)
@@ -79,7 +88,7 @@ def uint32(value, name):
     return number
 
 
-def batch_array(value, name, trailing=()):
+def batch_array(value: ArrayLike, name: str, trailing: Tuple[int, ...] = ()) -> Float64Array:
     """`value` as a float64 array of shape (..., *trailing): any batch shape in front."""
     array = _convert(value, name, np.float64)
     k = len(trailing)

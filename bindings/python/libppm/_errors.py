@@ -5,8 +5,12 @@ library's message (``ppm_last_error_message()``), which names the argument, file
 index at fault. The classes also derive from the matching built-in exception where one fits
 (``ValueError`` for invalid arguments, ``MemoryError``), so generic handlers catch them too.
 """
+from __future__ import annotations
+
+import builtins
 import enum
 import warnings
+from typing import Dict, Optional, Type
 
 
 class Status(enum.IntEnum):
@@ -26,11 +30,11 @@ class Status(enum.IntEnum):
 class Error(Exception):
     """A libppm call failed. ``status`` is its :class:`Status`, ``message`` the C message."""
 
-    status = None
+    status: Optional[Status] = None
 
-    def __init__(self, message, status=None):
+    def __init__(self, message: str, status: Optional[int] = None) -> None:
         super().__init__(message)
-        self.message = message
+        self.message: str = message
         if status is not None:
             self.status = Status(status)
 
@@ -57,6 +61,8 @@ class ClosedError(InvalidOperationError, ValueError):
 
 
 class OutOfMemoryError(Error, MemoryError):
+    """libppm could not allocate memory (``PPM_ERROR_OUT_OF_MEMORY``)."""
+
     status = Status.OUT_OF_MEMORY
 
 
@@ -66,7 +72,7 @@ class FileError(Error, OSError):
     status = Status.IO
 
 
-class FileNotFoundError(FileError, FileNotFoundError):  # noqa: A001 - both meanings hold
+class FileNotFoundError(FileError, builtins.FileNotFoundError):  # noqa: A001 - both meanings hold
     """A file that libppm was asked to read does not exist (``errno.ENOENT``)."""
 
 
@@ -77,6 +83,8 @@ class ParseError(Error):
 
 
 class UnsupportedError(Error):
+    """A valid request this libppm cannot serve, e.g. on a CPU without SSE2 (``PPM_ERROR_UNSUPPORTED``)."""
+
     status = Status.UNSUPPORTED
 
 
@@ -92,14 +100,14 @@ class InternalError(Error):
     status = Status.INTERNAL
 
 
-_BY_STATUS = {
+_BY_STATUS: Dict[Optional[int], Type[Error]] = {
     cls.status: cls
     for cls in (InvalidArgumentError, InvalidOperationError, OutOfMemoryError, FileError,
                 ParseError, UnsupportedError, CancelledError, InternalError)
 }
 
 
-def _class_for_status(status, message=""):
+def _class_for_status(status: int, message: str = "") -> Type[Error]:
     """The exception class of a C status and message (called by the extension module): the
     status's class, refined where the message says more (a missing file, an unknown key)."""
     if status == Status.IO and ("No such file or directory" in message or ": file not found: " in message):
@@ -114,6 +122,6 @@ class Warning(UserWarning):  # noqa: A001 - libppm.Warning, as libppm.Error
     element read leniently), located as ``file:line:column: what``."""
 
 
-def _warn(message):
+def _warn(message: str) -> None:
     """Issues a libppm warning (called by the extension module)."""
     warnings.warn(message, Warning, stacklevel=2)

@@ -1,14 +1,22 @@
 """Rays and hits as numpy structured arrays laid out exactly as ppm_ray and ppm_hit."""
+from __future__ import annotations
+
+from typing import Any, Tuple, cast
+
 import numpy as np
+import numpy.typing as npt
 
 from . import _core
 from ._arrays import batch_array
+from ._typing import ArrayLike, BoolArray, Float64Array, UInt32Array
 
-RAY_DTYPE = np.dtype(_core.ray_layout())
-HIT_DTYPE = np.dtype(_core.hit_layout())
+# numpy's stubs type a dtype's dict argument as a TypedDict, which a plain dict is not.
+RAY_DTYPE: np.dtype[np.void] = np.dtype(cast(Any, _core.ray_layout()))
+HIT_DTYPE: np.dtype[np.void] = np.dtype(cast(Any, _core.hit_layout()))
 
 
-def make_rays(origins, directions, tnear, tfar):
+def make_rays(origins: ArrayLike, directions: ArrayLike, tnear: ArrayLike,
+              tfar: ArrayLike) -> Tuple[npt.NDArray[np.void], Tuple[int, ...]]:
     """A 1-D ppm_ray array of the broadcast rays, and the batch shape."""
     org = batch_array(origins, "origins", (3,))
     dirs = batch_array(directions, "directions", (3,))
@@ -40,7 +48,23 @@ class Hits:
     ``raw`` is the underlying ppm_hit structured array (1-D).
     """
 
-    def __init__(self, raw, shape):
+    raw: npt.NDArray[np.void]
+    shape: Tuple[int, ...]
+    t: Float64Array
+    u: Float64Array
+    v: Float64Array
+    p: Float64Array
+    p_error: Float64Array
+    ng: Float64Array
+    ns: Float64Array
+    geom_id: UInt32Array
+    prim_id: UInt32Array
+    material: UInt32Array
+    hit: BoolArray
+
+    def __init__(self, raw: npt.NDArray[np.void], shape: Tuple[int, ...]) -> None:
+        """Wraps ``raw``, a 1-D :data:`libppm.HIT_DTYPE` array, as hits of batch ``shape``
+        (done by :meth:`libppm.Scene.intersect`)."""
         self.raw = raw
         self.shape = tuple(shape)
         for name in ("t", "u", "v", "p_error", "geom_id", "prim_id", "material"):
@@ -52,8 +76,8 @@ class Hits:
         # special case.
         self.prim_id[~self.hit] = _core.INVALID_ID
 
-    def __len__(self):
+    def __len__(self) -> int:
         return self.shape[0] if self.shape else 1
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"<libppm.Hits shape={self.shape} hits={int(self.hit.sum())}>"

@@ -3,11 +3,16 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from typing import Any, FrozenSet, Tuple
+from typing import Any, FrozenSet, Sequence, Tuple
 
 from ._arrays import vector
 
 Vec3 = Tuple[float, float, float]
+
+# The camera as libppm._core takes and returns it: origin, target, up, fov, width, height,
+# aperture_radius, focus_distance, near_clip.
+_CoreCamera = Tuple[Sequence[float], Sequence[float], Sequence[float], float, int, int, float,
+                    float, float]
 
 
 @dataclass
@@ -43,7 +48,7 @@ class Camera:
         """A copy with ``fields`` changed."""
         return dataclasses.replace(self, **fields)
 
-    def _as_tuple(self):
+    def _as_tuple(self) -> _CoreCamera:
         """The tuple libppm._core takes, checked."""
         size = []
         for name in ("width", "height"):
@@ -56,5 +61,7 @@ class Camera:
                 float(self.aperture_radius), float(self.focus_distance), float(self.near_clip))
 
     @classmethod
-    def _from_tuple(cls, t):
-        return cls(tuple(t[0]), tuple(t[1]), tuple(t[2]), *t[3:])
+    def _from_tuple(cls, t: _CoreCamera) -> "Camera":
+        """The camera of a tuple from libppm._core."""
+        return cls((t[0][0], t[0][1], t[0][2]), (t[1][0], t[1][1], t[1][2]),
+                   (t[2][0], t[2][1], t[2][2]), *t[3:])

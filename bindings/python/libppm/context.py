@@ -1,10 +1,13 @@
 """The root object: worker threads, Embree device."""
+from __future__ import annotations
+
 import numbers
+from typing import Optional, Union
 
 from . import _core
 from ._handle import Handle
 
-_default = None
+_default: Optional["Context"] = None
 
 
 class Context(Handle):
@@ -19,21 +22,23 @@ class Context(Handle):
     means all hardware threads.
     """
 
-    def __init__(self, threads=None):
+    _core_object: _core.Context
+
+    def __init__(self, threads: Optional[int] = None) -> None:
         self._core_object = _core.Context()
         if threads is not None:
             self.threads = threads
 
     @property
-    def threads(self):
+    def threads(self) -> int:
         """Worker threads (0 = all hardware threads); applies to calls that start later."""
         return self._core_object.get_int("threads")
 
     @threads.setter
-    def threads(self, value):
+    def threads(self, value: int) -> None:
         self._core_object.set_int("threads", int(value))
 
-    def set(self, key, value):
+    def set(self, key: str, value: Union[int, float]) -> None:
         """Sets a setting by name: an int goes to ``ppm_context_set_int``, a float to
         ``ppm_context_set_double`` (a whole float for the integer ``threads``)."""
         if isinstance(value, bool) or not isinstance(value, numbers.Real):
@@ -43,12 +48,12 @@ class Context(Handle):
         else:
             self._core_object.set_double(key, float(value))
 
-    def get(self, key):
+    def get(self, key: str) -> int:
         """An integer setting by name (``threads``)."""
         return self._core_object.get_int(key)
 
 
-def default_context():
+def default_context() -> Context:
     """The context shared by scenes created without one (made on first use)."""
     global _default
     if _default is None or _default.closed:
@@ -56,7 +61,7 @@ def default_context():
     return _default
 
 
-def resolve(context):
+def resolve(context: Optional[Context]) -> Context:
     """`context` if given, else the default one."""
     if context is None:
         return default_context()

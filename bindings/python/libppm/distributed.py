@@ -20,18 +20,27 @@ engine retries a failed task or a lost worker's task (``retries`` times); a retr
 renders the same bits. The scene path must name the same file on every worker (a shared
 file system, or the same path on each machine).
 """
+from __future__ import annotations
+
+import importlib
 import os
 import time
+from typing import (TYPE_CHECKING, Any, Callable, Dict, Iterable, Iterator, List, Mapping,
+                    Optional, Sequence, Tuple)
 
+from ._typing import Float32Array, PathLike
 from .partial import Partial, check_image_path, write_image
+
+if TYPE_CHECKING:
+    from .scene_file import SceneFile
 
 __all__ = ["render", "render_chunk"]
 
 # Scene files loaded by this worker process: (path, mtime, size, threads) -> SceneFile.
-_scene_cache = {}
+_scene_cache: Dict[Tuple[str, int, int, int], SceneFile] = {}
 
 
-def _scene_file(path, threads):
+def _scene_file(path: str, threads: int) -> SceneFile:
     from .context import Context
     from .scene_file import load
     status = os.stat(path)
@@ -45,7 +54,8 @@ def _scene_file(path, threads):
     return scene_file
 
 
-def render_chunk(scene_path, first, end, settings, pass_total=0, threads=0):
+def render_chunk(scene_path: PathLike, first: int, end: int, settings: Mapping[str, Any],
+                 pass_total: int = 0, threads: int = 0) -> bytes:
     """Renders passes ``first .. end-1`` of the scene in "pppm" mode with ``settings`` (a
     dict of render settings) on ``threads`` threads (0: all cores) and returns the partial
     render's bytes (a task's work; also usable on its own). The scene file is loaded once
@@ -63,33 +73,34 @@ def render_chunk(scene_path, first, end, settings, pass_total=0, threads=0):
 
 
 class _DaskBackend:
-    def __init__(self, client, retries):
+    def __init__(self, client: Any, retries: int) -> None:
         self.client, self.retries = client, retries
 
-    def submit(self, *args):
+    def submit(self, *args: Any) -> Any:
         return self.client.submit(render_chunk, *args, retries=self.retries, pure=False)
 
-    def completed(self, futures):
-        from dask.distributed import as_completed
+    def completed(self, futures: List[Any]) -> Iterator[List[Tuple[Any, bytes]]]:
+        # Imported by name: the optional dependencies need not ship type information.
+        as_completed = importlib.import_module("dask.distributed").as_completed
         for batch in as_completed(futures, with_results=True).batches():
             yield batch
 
-    def cancel(self, futures):
+    def cancel(self, futures: Iterable[Any]) -> None:
         self.client.cancel(list(futures))
 
 
 class _RayBackend:
-    def __init__(self, retries):
+    def __init__(self, retries: int) -> None:
         import ray
         self.ray = ray
         if not ray.is_initialized():
             ray.init()
         self.task = ray.remote(max_retries=retries, retry_exceptions=True)(render_chunk)
 
-    def submit(self, *args):
+    def submit(self, *args: Any) -> Any:
         return self.task.remote(*args)
 
-    def completed(self, futures):
+    def completed(self, futures: List[Any]) -> Iterator[List[Tuple[Any, bytes]]]:
         pending = list(futures)
         while pending:
             done, pending = self.ray.wait(pending, num_returns=1)
@@ -98,27 +109,31 @@ class _RayBackend:
                 done += more
             yield [(future, self.ray.get(future)) for future in done]
 
-    def cancel(self, futures):
+    def cancel(self, futures: Iterable[Any]) -> None:
         for future in futures:
             self.ray.cancel(future)
 
 
-def _chunks(missing, chunk_passes):
+def _chunks(missing: Iterable[Tuple[int, int]], chunk_passes: int) -> Iterator[Tuple[int, int]]:
     for first, end in missing:
         for start in range(first, end, chunk_passes):
             yield start, min(start + chunk_passes, end)
 
 
-def _write(merged, output, checkpoint, layers):
+def _write(merged: Partial, output: Optional[str], checkpoint: Optional[str],
+           layers: Sequence[str]) -> None:
     if checkpoint is not None:
         merged.save(checkpoint)
     if output is not None:
         write_image(output, merged.image(), {name: merged.layer(name) for name in layers})
 
 
-def render(scene_path, passes, chunk_passes=None, client=None, ray=False, output=None,
-           checkpoint=None, progress=True, layers=(), retries=3, callback=None, threads_per_task=0,
-           **settings):
+def render(scene_path: PathLike, passes: int, chunk_passes: Optional[int] = None,
+           client: Any = None, ray: bool = False, output: Optional[PathLike] = None,
+           checkpoint: Optional[PathLike] = None, progress: bool = True,
+           layers: Sequence[str] = (), retries: int = 3,
+           callback: Optional[Callable[[Partial, Tuple[int, int]], Optional[bool]]] = None,
+           threads_per_task: int = 0, **settings: Any) -> Float32Array:
     """Renders ``passes`` passes of a scene file on a Dask cluster (``client``, a
     ``dask.distributed.Client``) or on Ray (``ray=True``; connects to a running cluster, or
     starts a local one) and returns the image: float32 ``(H, W, 3)`` linear radiance.
@@ -156,8 +171,9 @@ def render(scene_path, passes, chunk_passes=None, client=None, ray=False, output
 
     backend = _DaskBackend(client, retries) if client is not None else _RayBackend(retries)
     if chunk_passes is None:
-        workers = len(client.scheduler_info()["workers"]) if client is not None else 1
-        if client is None:
+        if isinstance(backend, _DaskBackend):
+            workers = len(client.scheduler_info()["workers"])
+        else:
             workers = max(1, int(backend.ray.cluster_resources().get("CPU", 1)))
         chunk_passes = max(1, passes // (4 * max(1, workers)))
     chunk_passes = int(chunk_passes)
@@ -173,7 +189,7 @@ def render(scene_path, passes, chunk_passes=None, client=None, ray=False, output
     bar = None
     if progress:
         try:
-            from tqdm.auto import tqdm
+            tqdm = importlib.import_module("tqdm.auto").tqdm
             bar = tqdm(total=passes, initial=passes - sum(e - f for f, e in missing), unit="pass",
                        desc=os.path.basename(scene_path))
         except ImportError:
@@ -202,6 +218,7 @@ def render(scene_path, passes, chunk_passes=None, client=None, ray=False, output
                 if callback is not None and callback(merged, chunk) is False:
                     stop = True
                     break
+            assert merged is not None  # a round holds at least one chunk
             _write(merged, output, checkpoint, layers)
             if stop:
                 break

@@ -1,20 +1,18 @@
 """One-call rendering, in the style of Mitsuba 3's ``mi.render``."""
 from __future__ import annotations
 
-import os
 from typing import Any, Optional, Union
 
-import numpy as np
-
+from ._typing import Float32Array, PathLike
 from .scene_file import SceneFile, load_file
 
 #: Passes rendered when neither the call nor the scene file says how many.
 DEFAULT_PASSES = 16
 
 
-def render(scene: Union[SceneFile, str, "os.PathLike[str]"], passes: Optional[int] = None,
+def render(scene: Union[SceneFile, PathLike], passes: Optional[int] = None,
            time: Optional[float] = None, seed: Optional[int] = None,
-           **settings: Any) -> np.ndarray:
+           **settings: Any) -> Float32Array:
     """Renders a scene file and returns its image: float32 ``(height, width, 3)``, linear
     radiance.
 
@@ -34,7 +32,7 @@ def render(scene: Union[SceneFile, str, "os.PathLike[str]"], passes: Optional[in
     if time is not None and not float(time) > 0:
         raise ValueError(f"time must be a number of seconds > 0, not {time}")
     owned = not isinstance(scene, SceneFile)
-    scene_file = load_file(scene) if owned else scene
+    scene_file = scene if isinstance(scene, SceneFile) else load_file(scene)
     try:
         if passes is None:
             file_passes = scene_file.passes

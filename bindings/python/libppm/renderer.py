@@ -1,15 +1,29 @@
 """Progressive photon mapping (``ppm_renderer_*``)."""
+from __future__ import annotations
+
 import dataclasses
 import numbers
 import os
 import time
+from typing import TYPE_CHECKING, Any, Callable, Dict, Optional, Union
 
 import numpy as np
 
 from . import _core
-from ._errors import CancelledError, Error, InvalidArgumentError, UnknownKeyError
+from ._errors import CancelledError, InvalidArgumentError, UnknownKeyError
 from ._handle import Handle
+from ._typing import Float32Array, PathLike
 from .camera import Camera
+
+if TYPE_CHECKING:
+    from .partial import Partial
+    from .scene import Scene
+
+#: A render setting's value: ``str``, ``int`` (and ``bool``) or ``float``.
+SettingValue = Union[str, int, float]
+
+#: ``progress(pass_index, stats)`` of :meth:`Renderer.render`; returning ``False`` stops.
+ProgressCallback = Callable[[int, Dict[str, float]], Optional[bool]]
 
 _LAYER_CHANNELS = {"radiance": 3, "radius": 1, "photons": 1}
 _CAMERA_FIELDS = {f.name for f in dataclasses.fields(Camera)}
@@ -38,7 +52,10 @@ class Renderer(Handle):
     do not reach the renderer. It keeps the scene alive (``renderer.scene``).
     """
 
-    def __init__(self, scene, camera=None, **settings):
+    _core_object: _core.Renderer
+
+    def __init__(self, scene: Scene, camera: Optional[Camera] = None,
+                 **settings: Any) -> None:
         camera_fields = {k: settings.pop(k) for k in list(settings) if k in _CAMERA_FIELDS}
         if camera is None:
             camera = Camera(**camera_fields)
@@ -52,7 +69,8 @@ class Renderer(Handle):
         self.set(**settings)
 
     @classmethod
-    def _adopt(cls, core_renderer, scene, camera):
+    def _adopt(cls, core_renderer: _core.Renderer, scene: Scene, camera: Camera) -> "Renderer":
+        """A Renderer owning ``core_renderer`` (of a scene file), without a new handle."""
         renderer = cls.__new__(cls)
         renderer.scene = scene
         renderer.camera = camera
@@ -60,13 +78,16 @@ class Renderer(Handle):
         return renderer
 
     # -- settings -------------------------------------------------------------------------
-    def set(self, key=None, value=None, **settings):
+    def set(self, key: Optional[str] = None, value: Optional[SettingValue] = None,
+            **settings: SettingValue) -> None:
         """Sets settings: ``set("alpha", 0.7)`` or ``set(alpha=0.7, seed=3)``.
 
         Python str, int (and bool) and float values go to the string, integer and double
         setters of the C API; whole floats are accepted for integer settings.
         """
         if key is not None:
+            if value is None:
+                raise TypeError(f"set({key!r}): the value is missing")
             settings = {key: value, **settings}
         for name, v in settings.items():
             if isinstance(v, str):
@@ -79,7 +100,7 @@ class Renderer(Handle):
                 raise TypeError(f"render setting {name!r}: expected str, int or float, "
                                 f"got {type(v).__name__}")
 
-    def get(self, key):
+    def get(self, key: str) -> SettingValue:
         """A setting or read-only value by name (int, float or str, as the C API has it):
         the settings above and ``passes``, ``photons_emitted``, ``width``, ``height``,
         ``last_eye_pass_seconds``, ``last_photon_pass_seconds``,
@@ -95,25 +116,27 @@ class Renderer(Handle):
         raise UnknownKeyError(f"unknown render setting {key!r} ({last.message})")
 
     @property
-    def passes(self):
+    def passes(self) -> int:
         """Completed passes."""
         return self._core_object.get_int("passes")
 
     @property
-    def photons_emitted(self):
+    def photons_emitted(self) -> int:
         """Photon paths emitted so far (all of them, also those that left the scene)."""
         return self._core_object.get_int("photons_emitted")
 
     @property
-    def width(self):
+    def width(self) -> int:
+        """Image width in pixels (of the camera)."""
         return self._core_object.get_int("width")
 
     @property
-    def height(self):
+    def height(self) -> int:
+        """Image height in pixels (of the camera)."""
         return self._core_object.get_int("height")
 
     # -- rendering ------------------------------------------------------------------------
-    def render_pass(self):
+    def render_pass(self) -> None:
         """Runs one pass (eye pass, photon pass, statistics update) without the GIL.
 
         Raises :class:`libppm.CancelledError` if :meth:`cancel` was called before or during
@@ -121,7 +144,8 @@ class Renderer(Handle):
         """
         self._core_object.render_pass()
 
-    def render(self, passes=1, progress=None, time_limit=None):
+    def render(self, passes: int = 1, progress: Optional[ProgressCallback] = None,
+               time_limit: Optional[float] = None) -> Float32Array:
         """Runs up to ``passes`` passes and returns :meth:`image`.
 
         ``progress(pass_index, stats)`` is called after each pass with the 0-based index
@@ -145,10 +169,10 @@ class Renderer(Handle):
                 break
         return self.image()
 
-    def stats(self, elapsed=None):
+    def stats(self, elapsed: Optional[float] = None) -> Dict[str, float]:
         """Progress figures: passes, photons emitted, last pass timings (a dict)."""
         core = self._core_object
-        stats = {
+        stats: Dict[str, float] = {
             "passes": core.get_int("passes"),
             "photons_emitted": core.get_int("photons_emitted"),
             "last_eye_pass_seconds": core.get_double("last_eye_pass_seconds"),
@@ -159,25 +183,25 @@ class Renderer(Handle):
             stats["elapsed"] = elapsed
         return stats
 
-    def render_pass_index(self, index):
+    def render_pass_index(self, index: int) -> None:
         """Runs pass ``index`` of a pass-independent render (``mode="pppm"``), in any order;
         :meth:`render_pass` there runs the lowest index not yet rendered."""
         _core.render_pass_index(self._core_object, int(index))
 
-    def partial(self):
+    def partial(self) -> Partial:
         """The passes so far as a :class:`libppm.Partial` (``mode="pppm"``)."""
         from .partial import Partial
         return Partial(_core.renderer_partial(self._core_object))
 
-    def merge_partial(self, partial):
+    def merge_partial(self, partial: Partial) -> None:
         """Adds a :class:`libppm.Partial`'s passes to this renderer's (``mode="pppm"``)."""
         _core.renderer_merge_partial(self._core_object, partial._core_object)
 
-    def cancel(self):
+    def cancel(self) -> None:
         """Stops the running pass as soon as possible, or the next one. Thread safe."""
         self._core_object.cancel()
 
-    def layer(self, name="radiance"):
+    def layer(self, name: str = "radiance") -> Float32Array:
         """An image layer after the last completed pass, row-major from the top-left pixel:
         ``"radiance"`` float32 ``(H, W, 3)`` linear RGB (W/(m^2 sr)); ``"radius"`` float32
         ``(H, W)`` gather radius in scene units; ``"photons"`` ``(H, W)`` the alpha-reduced
@@ -188,23 +212,18 @@ class Renderer(Handle):
         self._core_object.get_layer(name, out)
         return out
 
-    def image(self):
+    def image(self) -> Float32Array:
         """The radiance layer: float32 ``(H, W, 3)`` linear RGB."""
         return self.layer("radiance")
 
     # -- checkpoints ----------------------------------------------------------------------
-    def save_checkpoint(self, path):
+    def save_checkpoint(self, path: PathLike) -> None:
         """Writes the progressive state after the last whole pass to ``path`` atomically."""
-        self._checkpoints().save_checkpoint(os.fspath(path))
+        self._core_object.save_checkpoint(os.fspath(path))
 
-    def load_checkpoint(self, path):
+    def load_checkpoint(self, path: PathLike) -> None:
         """Replaces the state of a renderer that has not run a pass yet by a checkpoint of
         the same scene, camera and fixed settings; rendering on gives the same image, bit
         for bit, as an uninterrupted render."""
-        self._checkpoints().load_checkpoint(os.fspath(path))
+        self._core_object.load_checkpoint(os.fspath(path))
 
-    def _checkpoints(self):
-        if not _core.has_checkpoints:
-            raise Error("checkpoints: the libppm this module was built against does not "
-                        "implement them (rebuild against a newer libppm)")
-        return self._core_object

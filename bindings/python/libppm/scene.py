@@ -1,6 +1,9 @@
 """Scenes: geometry, materials, textures, lights; commit; ray queries."""
+from __future__ import annotations
+
 import numbers
 import os
+from typing import Optional, Tuple, Union
 
 import numpy as np
 
@@ -8,7 +11,8 @@ from . import _core, _rays
 from ._arrays import color, index_array, real_array, uint32, vector
 from ._errors import InvalidArgumentError
 from ._handle import Handle
-from .context import resolve
+from ._typing import ArrayLike, BoolArray, ColorLike, Float64Array, PathLike
+from .context import Context, resolve
 
 #: Mitsuba 3's default indices of refraction (glass and air).
 DEFAULT_INT_IOR = 1.5046
@@ -34,14 +38,18 @@ class Scene(Handle):
     (default 1e-9, range [1e-14, 1e-2]).
     """
 
-    def __init__(self, context=None, tolerance=None):
+    _core_object: _core.Scene
+
+    def __init__(self, context: Optional[Context] = None,
+                 tolerance: Optional[float] = None) -> None:
         self.context = resolve(context)
         self._core_object = _core.Scene(self.context._core_object)
         if tolerance is not None:
             self.tolerance = tolerance
 
     @classmethod
-    def _adopt(cls, core_scene, context):
+    def _adopt(cls, core_scene: _core.Scene, context: Context) -> "Scene":
+        """A Scene owning ``core_scene`` (of a scene file), without a new handle."""
         scene = cls.__new__(cls)
         scene.context = context
         scene._core_object = core_scene
@@ -49,27 +57,27 @@ class Scene(Handle):
 
     # -- settings -------------------------------------------------------------------------
     @property
-    def tolerance(self):
+    def tolerance(self) -> float:
         """Hit accuracy relative to the bounding-box diagonal; takes effect at commit."""
         return self._core_object.get_double("tolerance")
 
     @tolerance.setter
-    def tolerance(self, value):
+    def tolerance(self, value: float) -> None:
         self._core_object.set_double("tolerance", float(value))
 
     @property
-    def patch_presplit(self):
+    def patch_presplit(self) -> int:
         """Sub-patches per patch edge (an int in [1, 32], default 12): memory against ray
         speed, see ppm.h; takes effect at commit."""
         return self._core_object.get_int("patch_presplit")
 
     @patch_presplit.setter
-    def patch_presplit(self, value):
+    def patch_presplit(self, value: int) -> None:
         if isinstance(value, bool) or not isinstance(value, numbers.Integral):
             raise TypeError(f"patch_presplit: expected an int, got {type(value).__name__}")
         self._core_object.set_int("patch_presplit", int(value))
 
-    def set(self, key, value):
+    def set(self, key: str, value: Union[int, float]) -> None:
         """Sets a setting by name: an int goes to ``ppm_scene_set_int``, a float to
         ``ppm_scene_set_double`` (whole floats are accepted for integer settings)."""
         if isinstance(value, bool) or not isinstance(value, numbers.Real):
@@ -79,7 +87,7 @@ class Scene(Handle):
         else:
             self._core_object.set_double(key, float(value))
 
-    def get(self, key):
+    def get(self, key: str) -> Union[int, float]:
         """A setting by name, as the C API types it: ``patch_presplit`` an int,
         ``tolerance`` a float."""
         # One getter per type and no "type of key" query: get_int refuses a double key.
@@ -89,12 +97,12 @@ class Scene(Handle):
             return self._core_object.get_double(key)
 
     # -- geometry -------------------------------------------------------------------------
-    def _with_material(self, geom_id, material):
+    def _with_material(self, geom_id: int, material: Optional[int]) -> int:
         if material is not None:
             self.set_material(geom_id, material)
         return geom_id
 
-    def add_bezier_patches(self, control_points, material=None):
+    def add_bezier_patches(self, control_points: ArrayLike, material: Optional[int] = None) -> int:
         """Adds bicubic Bezier patches as one geometry; returns its id.
 
         ``control_points``: shape ``(n, 16, 3)`` or ``(n, 4, 4, 3)``; patch p has control
@@ -105,16 +113,17 @@ class Scene(Handle):
         points = real_array(control_points, "control_points", (None, 16, 3), (None, 4, 4, 3))
         return self._with_material(self._core_object.add_bezier_patches(points), material)
 
-    def load_bpt(self, path, material=None):
+    def load_bpt(self, path: PathLike, material: Optional[int] = None) -> int:
         """Adds the patches of a ``.bpt`` file as one geometry; returns its id."""
         return self._with_material(self._core_object.load_bpt(os.fspath(path)), material)
 
-    def add_sphere(self, center, radius, material=None):
+    def add_sphere(self, center: ArrayLike, radius: float, material: Optional[int] = None) -> int:
         """Adds a sphere; hit (u, v) = (phi / 2pi, theta / pi), theta from +z."""
         return self._with_material(
             self._core_object.add_sphere(vector(center, "center"), float(radius)), material)
 
-    def add_quad(self, origin, edge_u, edge_v, material=None):
+    def add_quad(self, origin: ArrayLike, edge_u: ArrayLike, edge_v: ArrayLike,
+                 material: Optional[int] = None) -> int:
         """Adds the parallelogram ``origin + s*edge_u + t*edge_v``, s, t in [0, 1].
 
         Hit (u, v) = (s, t); geometric normal ``edge_u x edge_v``.
@@ -123,7 +132,9 @@ class Scene(Handle):
             self._core_object.add_quad(vector(origin, "origin"), vector(edge_u, "edge_u"),
                                        vector(edge_v, "edge_v")), material)
 
-    def add_mesh(self, positions, indices, normals=None, uvs=None, material=None):
+    def add_mesh(self, positions: ArrayLike, indices: ArrayLike,
+                 normals: Optional[ArrayLike] = None, uvs: Optional[ArrayLike] = None,
+                 material: Optional[int] = None) -> int:
         """Adds a triangle mesh; returns its id.
 
         ``positions`` ``(V, 3)``, ``indices`` ``(T, 3)`` integers, optional per-vertex
@@ -142,11 +153,11 @@ class Scene(Handle):
 
     add_triangle_mesh = add_mesh
 
-    def load_obj(self, path, material=None):
+    def load_obj(self, path: PathLike, material: Optional[int] = None) -> int:
         """Adds a Wavefront OBJ file as one triangle mesh; returns its id."""
         return self._with_material(self._core_object.load_obj(os.fspath(path)), material)
 
-    def set_transform(self, geom_id, matrix):
+    def set_transform(self, geom_id: int, matrix: ArrayLike) -> None:
         """Sets a geometry's affine transform: a ``(4, 4)`` (last row 0 0 0 1) or ``(3, 4)``
         matrix applied to points as ``M @ (x, y, z, 1)``. Spheres need uniform scale."""
         m = real_array(matrix, "matrix", (4, 4), (3, 4))
@@ -154,21 +165,21 @@ class Scene(Handle):
             m = np.vstack([m, [0.0, 0.0, 0.0, 1.0]])
         self._core_object.set_geometry_transform(uint32(geom_id, "geom_id"), np.ascontiguousarray(m))
 
-    def set_material(self, geom_id, material_id):
+    def set_material(self, geom_id: int, material_id: int) -> None:
         """Assigns a material id (reported in hits, used by the renderer) to a geometry."""
         self._core_object.set_geometry_material(uint32(geom_id, "geom_id"),
                                                 uint32(material_id, "material_id"))
 
-    def primitive_count(self, geom_id):
+    def primitive_count(self, geom_id: int) -> int:
         """Patches or triangles of a geometry; 1 for a sphere or quad."""
         return self._core_object.get_primitive_count(uint32(geom_id, "geom_id"))
 
     @property
-    def geometry_count(self):
+    def geometry_count(self) -> int:
         """Number of geometries; their ids are ``0 .. geometry_count - 1``."""
         return self._core_object.get_geometry_count()
 
-    def bezier_patches(self, geom_id):
+    def bezier_patches(self, geom_id: int) -> Float64Array:
         """World-space control points of a committed patch geometry, its transform applied:
         float64 array ``(n, 16, 3)`` in the layout of :meth:`add_bezier_patches`.
         Raises :class:`libppm.InvalidArgumentError` for a geometry that is not made of patches."""
@@ -177,37 +188,40 @@ class Scene(Handle):
         self._core_object.get_bezier_patches(uint32(geom_id, "geom_id"), out)
         return out
 
-    def commit(self):
+    def commit(self) -> None:
         """Builds the acceleration structure; needed after any change, before queries."""
         self._core_object.commit()
 
     @property
-    def bounds(self):
+    def bounds(self) -> Tuple[Float64Array, Float64Array]:
         """``(lower, upper)`` corners of the committed scene's box, float64 arrays."""
         lower, upper = self._core_object.get_bounds()
         return np.array(lower), np.array(upper)
 
     # -- materials, textures, lights ------------------------------------------------------
-    def add_diffuse_material(self, reflectance=0.5):
+    def add_diffuse_material(self, reflectance: ColorLike = 0.5) -> int:
         """Lambertian material (Mitsuba ``diffuse``); RGB or grey reflectance in [0, 1]."""
         return self._core_object.add_diffuse_material(color(reflectance, "reflectance"))
 
-    def add_mirror_material(self, specular_reflectance=1.0):
+    def add_mirror_material(self, specular_reflectance: ColorLike = 1.0) -> int:
         """Perfect mirror with a tint (Mitsuba ``conductor``)."""
         return self._core_object.add_mirror_material(
             color(specular_reflectance, "specular_reflectance"))
 
-    def add_dielectric_material(self, int_ior=DEFAULT_INT_IOR, ext_ior=DEFAULT_EXT_IOR):
+    def add_dielectric_material(self, int_ior: float = DEFAULT_INT_IOR,
+                                ext_ior: float = DEFAULT_EXT_IOR) -> int:
         """Smooth glass with exact Fresnel (Mitsuba ``dielectric``); normals point outwards."""
         return self._core_object.add_dielectric_material(float(int_ior), float(ext_ior))
 
-    def add_coated_material(self, diffuse_reflectance=0.5, int_ior=DEFAULT_INT_IOR,
-                            ext_ior=DEFAULT_EXT_IOR):
+    def add_coated_material(self, diffuse_reflectance: ColorLike = 0.5,
+                            int_ior: float = DEFAULT_INT_IOR,
+                            ext_ior: float = DEFAULT_EXT_IOR) -> int:
         """Diffuse base under a smooth dielectric coat (Mitsuba ``plastic``)."""
         return self._core_object.add_coated_material(
             color(diffuse_reflectance, "diffuse_reflectance"), float(int_ior), float(ext_ior))
 
-    def set_texture(self, material_id, path, scale=None, offset=None):
+    def set_texture(self, material_id: int, path: PathLike, scale: Optional[ArrayLike] = None,
+                    offset: Optional[ArrayLike] = None) -> None:
         """Gives a diffuse, mirror or coated material an image texture (read now).
 
         Looked up at ``(s * scale[0] + offset[0], t * scale[1] + offset[1])`` for surface
@@ -218,32 +232,34 @@ class Scene(Handle):
             None if scale is None else vector(scale, "scale", 2),
             None if offset is None else vector(offset, "offset", 2))
 
-    def set_patch_uv_rects(self, geom_id, rects):
+    def set_patch_uv_rects(self, geom_id: int, rects: ArrayLike) -> None:
         """Maps one texture across a patch set: ``rects`` ``(n_patches, 4)`` rows
         ``(s0, t0, s1, t1)``; patch i's (u, v) maps onto ``[s0, s1] x [t0, t1]``."""
         r = real_array(rects, "rects", (None, 4))
         self._core_object.set_patch_uv_rects(uint32(geom_id, "geom_id"), r)
 
-    def add_point_light(self, position, intensity):
+    def add_point_light(self, position: ArrayLike, intensity: ColorLike) -> int:
         """Point light; ``intensity`` in W/sr (RGB or grey). Returns the light id."""
         return self._core_object.add_point_light(vector(position, "position"),
                                                  color(intensity, "intensity"))
 
-    def add_spot_light(self, position, target, intensity, cutoff_angle=20.0, beam_width=15.0):
+    def add_spot_light(self, position: ArrayLike, target: ArrayLike, intensity: ColorLike,
+                       cutoff_angle: float = 20.0, beam_width: float = 15.0) -> int:
         """Spot light (Mitsuba ``spot``): full ``intensity`` (W/sr) within ``beam_width``
         degrees of the axis, falling linearly to 0 at ``cutoff_angle``."""
         return self._core_object.add_spot_light(
             vector(position, "position"), vector(target, "target"), color(intensity, "intensity"),
             float(cutoff_angle), float(beam_width))
 
-    def set_emission(self, geom_id, radiance):
+    def set_emission(self, geom_id: int, radiance: ColorLike) -> None:
         """Makes a quad or sphere an area light of constant ``radiance`` (W/(m^2 sr)) on the
         side its normal points to; black turns it off."""
         self._core_object.set_geometry_emission(uint32(geom_id, "geom_id"),
                                                 color(radiance, "radiance"))
 
     # -- ray queries ----------------------------------------------------------------------
-    def intersect(self, origins, directions, tnear=0.0, tfar=np.inf):
+    def intersect(self, origins: ArrayLike, directions: ArrayLike, tnear: ArrayLike = 0.0,
+                  tfar: ArrayLike = np.inf) -> _rays.Hits:
         """Closest hits of rays ``origins + t * directions``, t in [tnear, tfar].
 
         ``origins`` and ``directions`` have shape ``(..., 3)`` and broadcast against each
@@ -258,7 +274,8 @@ class Scene(Handle):
         self._core_object.intersect(rays.view(np.uint8), hits.view(np.uint8))
         return _rays.Hits(hits, shape)
 
-    def occluded(self, origins, directions, tnear=0.0, tfar=np.inf):
+    def occluded(self, origins: ArrayLike, directions: ArrayLike, tnear: ArrayLike = 0.0,
+                 tfar: ArrayLike = np.inf) -> BoolArray:
         """Whether each ray hits anything in [tnear, tfar]: a bool array of the batch shape.
         Arguments as for :meth:`intersect`."""
         rays, shape = _rays.make_rays(origins, directions, tnear, tfar)

@@ -6,14 +6,13 @@ import os
 from typing import Any, Mapping, Optional, Union
 
 from . import _core
-from ._errors import Error, UnknownKeyError
+from ._errors import UnknownKeyError
 from ._handle import Handle
+from ._typing import PathLike
 from .camera import Camera
 from .context import Context, resolve
 from .renderer import Renderer
 from .scene import Scene
-
-PathLike = Union[str, "os.PathLike[str]"]
 
 # The file's read-only values and their types (ppm_scene_file_get_int / _get_double).
 _VALUES = {"passes": "int", "time": "double"}
@@ -34,13 +33,12 @@ class SceneFile(Handle):
     messages), with file names inside relative to ``folder``.
     """
 
+    _core_object: _core.SceneFile
+
     def __init__(self, path: PathLike, context: Optional[Context] = None, *,
                  format: Optional[str] = None, defines: Optional[Mapping[str, Any]] = None,
                  lenient: bool = False, text: Optional[str] = None,
                  folder: Optional[PathLike] = None) -> None:
-        if not _core.has_scene_files:
-            raise Error("scene files: the libppm this module was built against does not "
-                        "implement them (rebuild against a newer libppm)")
         self.context = resolve(context)
         self.path = os.fspath(path)
         parameters = {str(k): _define_value(v) for k, v in (defines or {}).items()}

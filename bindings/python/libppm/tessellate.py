@@ -1,10 +1,13 @@
 """Triangle meshes from Bezier patches (``ppm_tessellate_patches``)."""
-from typing import NamedTuple
+from __future__ import annotations
+
+from typing import NamedTuple, Optional
 
 import numpy as np
 
 from . import _core
 from ._arrays import real_array
+from ._typing import ArrayLike, Float64Array, UInt32Array
 
 
 class Mesh(NamedTuple):
@@ -19,18 +22,19 @@ class Mesh(NamedTuple):
     surface; ``tolerance`` the requested one (0 for a uniform grid).
     """
 
-    vertices: np.ndarray
-    normals: np.ndarray
-    uvs: np.ndarray
-    triangles: np.ndarray
-    triangle_patches: np.ndarray
-    welded_ids: np.ndarray
+    vertices: Float64Array
+    normals: Float64Array
+    uvs: Float64Array
+    triangles: UInt32Array
+    triangle_patches: UInt32Array
+    welded_ids: UInt32Array
     welded_count: int
     max_deviation: float
     tolerance: float
 
 
-def tessellate(control_points, tolerance=None, grid=None):
+def tessellate(control_points: ArrayLike, tolerance: Optional[float] = None,
+               grid: Optional[int] = None) -> Mesh:
     """Tessellates bicubic Bezier patches into triangles; returns a :class:`Mesh`.
 
     ``control_points``: shape ``(n, 16, 3)`` or ``(n, 4, 4, 3)``, laid out as for
@@ -52,6 +56,7 @@ def tessellate(control_points, tolerance=None, grid=None):
         if grid > 0xFFFFFFFF:
             raise ValueError(f"grid: {grid} is too large (at most 4096)")
     else:
+        assert tolerance is not None  # exactly one of the two was given
         grid, tolerance = 0, float(tolerance)
     mesh = _core.tessellate(points, tolerance, grid)
     try:

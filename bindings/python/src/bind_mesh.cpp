@@ -28,7 +28,7 @@ template <typename T> nb::object view(ppm_mesh mesh, const T *data, std::initial
 void bind_mesh(nb::module_ &m) {
     nb::class_<Mesh> cls(m, "Mesh");
     def_close(cls);
-    cls.def("arrays", [](Mesh &self) {
+    cls.def("arrays", [](Mesh &self) -> nb::typed<nb::dict, nb::str, nb::any> {
         ppm_mesh mesh = self.get();
         const double *positions = nullptr, *normals = nullptr, *uvs = nullptr;
         const uint32_t *indices = nullptr, *patches = nullptr, *welded = nullptr;

@@ -12,6 +12,9 @@ namespace ppm_py {
 
 namespace {
 
+// A dict[str, Any] in the generated stubs.
+using LayoutDict = nb::typed<nb::dict, nb::str, nb::any>;
+
 // (names, formats, offsets, itemsize): the arguments of numpy.dtype for a C struct.
 struct Layout {
     nb::list names, formats, offsets;
@@ -20,7 +23,7 @@ struct Layout {
         formats.append(format);
         offsets.append(offset);
     }
-    nb::dict dict(size_t itemsize) const {
+    LayoutDict dict(size_t itemsize) const {
         nb::dict d;
         d["names"] = names;
         d["formats"] = formats;
@@ -30,7 +33,7 @@ struct Layout {
     }
 };
 
-nb::dict ray_layout() {
+LayoutDict ray_layout() {
     Layout l;
     l.add("org", "(3,)f8", offsetof(ppm_ray, org));
     l.add("tnear", "f8", offsetof(ppm_ray, tnear));
@@ -39,7 +42,7 @@ nb::dict ray_layout() {
     return l.dict(sizeof(ppm_ray));
 }
 
-nb::dict hit_layout() {
+LayoutDict hit_layout() {
     Layout l;
     l.add("t", "f8", offsetof(ppm_hit, t));
     l.add("u", "f8", offsetof(ppm_hit, u));

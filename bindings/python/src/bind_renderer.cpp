@@ -62,9 +62,6 @@ void bind_renderer(nb::module_ &m) {
         check(ppm_renderer_get_layer(renderer.get(), layer.c_str(), out.data(), out.size()));
     });
 
-    // Declared in ppm.h before libppm implemented them: compiled only when the libppm this
-    // module links has them (CMakeLists.txt checks), so the module loads either way.
-#ifdef PPM_PY_HAVE_CHECKPOINTS
     cls.def("save_checkpoint", [](Renderer &r, const std::string &path) {
         auto renderer = r.borrow();
         nb::gil_scoped_release unlocked;
@@ -75,10 +72,6 @@ void bind_renderer(nb::module_ &m) {
         nb::gil_scoped_release unlocked;
         check(ppm_renderer_load_checkpoint(renderer.get(), path.c_str()));
     });
-    m.attr("has_checkpoints") = true;
-#else
-    m.attr("has_checkpoints") = false;
-#endif
 }
 
 } // namespace ppm_py

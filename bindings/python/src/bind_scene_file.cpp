@@ -1,6 +1,4 @@
-// Scene files (docs/scene-format.md: JSON or Mitsuba 3 XML). Declared in ppm.h before libppm implemented them:
-// compiled only when the libppm this module links has them (CMakeLists.txt checks), and
-// libppm._core.has_scene_files says which.
+// Scene files (docs/scene-format.md: JSON or Mitsuba 3 XML).
 #include "camera.h"
 #include "objects.h"
 
@@ -17,8 +15,6 @@ namespace nb = nanobind;
 
 namespace ppm_py {
 
-#ifdef PPM_PY_HAVE_SCENE_FILES
-
 namespace {
 
 struct SceneFile : Handle<ppm_scene_file, ppm_scene_file_retain, ppm_scene_file_release> {
@@ -28,7 +24,6 @@ struct SceneFile : Handle<ppm_scene_file, ppm_scene_file_retain, ppm_scene_file_
 } // namespace
 
 void bind_scene_file(nb::module_ &m) {
-    m.attr("has_scene_files") = true;
     nb::class_<SceneFile> cls(m, "SceneFile");
     // Loading builds and commits the scene and reads textures: no GIL. With `text`, the
     // scene is that text, named `path` in messages, its file names relative to `folder`.
@@ -87,11 +82,5 @@ void bind_scene_file(nb::module_ &m) {
         return value;
     });
 }
-
-#else
-
-void bind_scene_file(nb::module_ &m) { m.attr("has_scene_files") = false; }
-
-#endif
 
 } // namespace ppm_py

@@ -1,6 +1,4 @@
-"""Scene files and checkpoints. libppm declared these before implementing them: the tests
-skip when the libppm the module was built against lacks them (libppm._has_scene_files,
-libppm._has_checkpoints)."""
+"""Scene files and checkpoints."""
 import json
 
 import numpy as np
@@ -10,10 +8,6 @@ import libppm
 
 from conftest import TEAPOT
 
-needs_scene_files = pytest.mark.skipif(
-    not libppm._has_scene_files, reason="libppm built without scene files (ppm_scene_file_load)")
-needs_checkpoints = pytest.mark.skipif(
-    not libppm._has_checkpoints, reason="libppm built without checkpoints (ppm_renderer_save_checkpoint)")
 
 
 def write_scene(folder, **integrator):
@@ -40,7 +34,6 @@ def write_scene(folder, **integrator):
     return path
 
 
-@needs_scene_files
 def test_load_scene_file(tmp_path):
     path = write_scene(tmp_path, passes=3, time=1.5)
     with libppm.load(path) as f:
@@ -60,7 +53,6 @@ def test_load_scene_file(tmp_path):
             assert image.shape == (16, 24, 3) and image.mean() > 0
 
 
-@needs_scene_files
 def test_scene_file_errors(tmp_path):
     with pytest.raises(libppm.FileError):
         libppm.load(tmp_path / "missing.json")
@@ -70,7 +62,6 @@ def test_scene_file_errors(tmp_path):
         libppm.load(bad)
 
 
-@needs_scene_files
 def test_scene_outlives_its_file(tmp_path):
     f = libppm.load(write_scene(tmp_path))
     scene = f.scene
@@ -93,7 +84,6 @@ def teapot_scene():
         yield s
 
 
-@needs_checkpoints
 def test_checkpoint_resumes_bit_for_bit(tmp_path, teapot_scene):
     checkpoint = tmp_path / "run.ckpt"
     with small_renderer(teapot_scene) as straight:
@@ -108,7 +98,6 @@ def test_checkpoint_resumes_bit_for_bit(tmp_path, teapot_scene):
     assert np.array_equal(image, expected)
 
 
-@needs_checkpoints
 def test_checkpoint_errors(tmp_path, teapot_scene):
     with small_renderer(teapot_scene) as r:
         with pytest.raises(libppm.FileError):
@@ -124,13 +113,3 @@ def test_checkpoint_errors(tmp_path, teapot_scene):
     with small_renderer(teapot_scene, direct_lighting=0) as other:
         with pytest.raises(libppm.InvalidArgumentError):
             other.load_checkpoint(tmp_path / "one.ckpt")
-
-
-def test_missing_features_raise_clear_errors(tmp_path, teapot_scene):
-    """Without the library functions the Python methods exist and say why they fail."""
-    if not libppm._has_checkpoints:
-        with small_renderer(teapot_scene) as r, pytest.raises(libppm.Error, match="checkpoints"):
-            r.save_checkpoint(tmp_path / "x.ckpt")
-    if not libppm._has_scene_files:
-        with pytest.raises(libppm.Error, match="scene files"):
-            libppm.load(tmp_path / "scene.json")
