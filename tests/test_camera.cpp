@@ -5,6 +5,7 @@
 
 #include "test_support.h"
 
+#include <array>
 #include <cmath>
 
 using namespace ppm;
@@ -205,6 +206,35 @@ void invalid_settings_are_rejected(void **) {
     (void)ok;
 }
 
+// A crop window is a part of the whole film: its pixel (i, j) sees what the whole image's
+// pixel (x0 + i, y0 + j) sees, and projection returns cropped film positions.
+void crop_window_is_part_of_the_film(void **) {
+    const CameraSettings whole_settings = oblique_settings();
+    CameraSettings crop_settings = whole_settings;
+    crop_settings.crop_x0 = 100, crop_settings.crop_y0 = 40;
+    crop_settings.crop_x1 = 300, crop_settings.crop_y1 = 200;
+    const Camera whole(whole_settings), crop(crop_settings);
+    assert_int_equal(crop.width(), 200);
+    assert_int_equal(crop.height(), 160);
+    assert_close(crop.pixel_size_at_unit_distance(), whole.pixel_size_at_unit_distance(), 1e-15);
+    for (double x : {0.0, 17.25, 199.5})
+        for (double y : {0.0, 80.5, 160.0}) {
+            const CameraRay a = crop.generate_ray(x, y, 0.5, 0.5);
+            const CameraRay b = whole.generate_ray(x + 100, y + 40, 0.5, 0.5);
+            assert_vec_close(a.direction, b.direction, 1e-14);
+            double px = 0, py = 0;
+            assert_true(crop.project(a.origin + a.direction * 7.0, &px, &py));
+            assert_close(px, x, 1e-9);
+            assert_close(py, y, 1e-9);
+        }
+    for (const auto &window : {std::array<int, 4>{0, 0, 641, 10}, std::array<int, 4>{5, 5, 5, 10},
+                               std::array<int, 4>{-1, 0, 10, 10}, std::array<int, 4>{0, 9, 10, 3}}) {
+        CameraSettings bad = whole_settings;
+        bad.crop_x0 = window[0], bad.crop_y0 = window[1], bad.crop_x1 = window[2], bad.crop_y1 = window[3];
+        expect_invalid(bad);
+    }
+}
+
 } // namespace
 
 int main() {
@@ -212,7 +242,7 @@ int main() {
         cmocka_unit_test(centre_ray_goes_to_the_target), cmocka_unit_test(local_frame_follows_mitsuba),
         cmocka_unit_test(fov_spans_the_image_width),     cmocka_unit_test(pixels_are_square_for_any_aspect),
         cmocka_unit_test(project_inverts_generate_ray),  cmocka_unit_test(thin_lens_rays_meet_on_the_focus_plane),
-        cmocka_unit_test(invalid_settings_are_rejected),
+        cmocka_unit_test(invalid_settings_are_rejected), cmocka_unit_test(crop_window_is_part_of_the_film),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

@@ -70,10 +70,11 @@ static void test_init_sets_size_and_defaults(void **state) {
     for (int k = 0; k < 3; ++k) assert_true(camera.origin[k] == 0);
     assert_true(camera.target[0] == 0 && camera.target[1] == 0 && camera.target[2] == 1);
     assert_true(camera.up[0] == 0 && camera.up[1] == 1 && camera.up[2] == 0);
-    assert_true(camera.fov == 45);
+    assert_true(camera.fov == 39.597752709049864);
     assert_int_equal(camera.width, 0);
     assert_int_equal(camera.height, 0);
-    assert_true(camera.aperture_radius == 0 && camera.focus_distance == 0 && camera.near_clip == 0);
+    assert_true(camera.aperture_radius == 0 && camera.focus_distance == 0 && camera.near_clip == 0.01);
+    assert_true(camera.crop_x0 == 0 && camera.crop_y0 == 0 && camera.crop_x1 == 0 && camera.crop_y1 == 0);
     for (size_t k = 0; k < sizeof camera.reserved / sizeof camera.reserved[0]; ++k)
         assert_true(camera.reserved[k] == 0);
 }
@@ -277,6 +278,69 @@ static void test_scene_file_camera_v2(void **state) {
     ppm_scene_file_release(file);
 }
 
+/* Many passes of a pinhole camera, no photons needed (a convex sphere under a point light
+ * has direct light only): the radiance of a w x h image, malloc'ed. */
+static float *render_pinhole(ppm_scene scene, const ppm_camera_v2 *camera, int w, int h) {
+    ppm_renderer r = NULL;
+    assert_ppm_ok(ppm_renderer_create_v2(scene, camera, &r));
+    int64_t rw = 0, rh = 0;
+    assert_ppm_ok(ppm_renderer_get_int(r, "width", &rw));
+    assert_ppm_ok(ppm_renderer_get_int(r, "height", &rh));
+    assert_int_equal(rw, w);
+    assert_int_equal(rh, h);
+    assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", 100));
+    for (int pass = 0; pass < 64; ++pass) assert_ppm_ok(ppm_render_pass(r));
+    float *rgb = malloc(sizeof(float) * (size_t)w * (size_t)h * 3);
+    assert_non_null(rgb);
+    assert_ppm_ok(ppm_renderer_get_layer(r, "radiance", rgb, (size_t)w * (size_t)h * 3));
+    ppm_renderer_release(r);
+    return rgb;
+}
+
+/* A crop window renders the pixels of the whole image that it covers: the same projection,
+ * so each cropped pixel converges to the whole image's pixel at the same place (the pixel
+ * jitter differs, so they agree within the anti-aliasing noise), and a window moved by one
+ * pixel does not. */
+static void test_crop_window_renders_part_of_the_image(void **state) {
+    fixture *f = *state;
+    build_sphere(f->scene);
+    ppm_camera_v2 camera = sphere_camera();
+    camera.aperture_radius = 0;
+    camera.focus_distance = 0;
+    float *whole = render_pinhole(f->scene, &camera, width, height);
+    const int x0 = 3, y0 = 2, cw = 6, ch = 5;
+    camera.crop_x0 = x0, camera.crop_y0 = y0, camera.crop_x1 = x0 + cw, camera.crop_y1 = y0 + ch;
+    float *crop = render_pinhole(f->scene, &camera, cw, ch);
+    double peak = 0, same = 0, shifted = 0;
+    for (int i = 0; i < width * height * 3; ++i) peak = fmax(peak, whole[i]);
+    for (int y = 0; y < ch; ++y)
+        for (int x = 0; x < cw; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const float v = crop[(y * cw + x) * 3 + c];
+                same = fmax(same, fabs(v - whole[((y + y0) * width + x + x0) * 3 + c]));
+                shifted = fmax(shifted, fabs(v - whole[((y + y0) * width + x + x0 + 1) * 3 + c]));
+            }
+    assert_true(peak > 0);
+    assert_true(same < 0.05 * peak);
+    assert_true(shifted > 0.2 * peak);
+    free(whole);
+    free(crop);
+
+    ppm_renderer r = NULL;
+    assert_ppm_ok(ppm_renderer_create_v2(f->scene, &camera, &r));
+    ppm_camera_v2 back;
+    ppm_camera_v2_init(&back);
+    assert_ppm_ok(ppm_renderer_get_camera_v2(r, &back));
+    assert_true(back.crop_x0 == 3 && back.crop_y0 == 2 && back.crop_x1 == 9 && back.crop_y1 == 7);
+    assert_true(back.width == width && back.height == height);
+    ppm_renderer_release(r);
+
+    camera.crop_x1 = width + 1; /* beyond the image */
+    assert_ppm_error(ppm_renderer_create_v2(f->scene, &camera, &r), PPM_ERROR_INVALID_ARGUMENT, "crop window");
+    camera.crop_x1 = x0; /* empty */
+    assert_ppm_error(ppm_renderer_create_v2(f->scene, &camera, &r), PPM_ERROR_INVALID_ARGUMENT, "crop window");
+}
+
 #define TEST(name) cmocka_unit_test_setup_teardown(name, scene_fixture_setup, scene_fixture_teardown)
 
 int main(void) {
@@ -293,6 +357,7 @@ int main(void) {
         TEST(test_null_arguments),
         TEST(test_uncommitted_scene),
         TEST(test_scene_file_camera_v2),
+        TEST(test_crop_window_renders_part_of_the_image),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -198,6 +198,24 @@ static void test_scene_from_text_resolves_names_against_the_folder(void **state)
     ppm_scene_file_release(file);
 }
 
+/* A misspelled key or type name in a scene file is named with its likely meaning. */
+static void test_misspellings_get_a_suggestion(void **state) {
+    fixture *f = *state;
+    const char *bad_type = "{\"bsdfs\": {\"grey\": {\"type\": \"difuse\"}}, \"shapes\": []}";
+    ppm_scene_file file = NULL;
+    assert_int_equal(ppm_scene_file_load_memory(f->context, bad_type, strlen(bad_type), "typo.json", f->folder, NULL,
+                                                &file),
+                     PPM_ERROR_PARSE);
+    assert_message_has("typo.json:1:");
+    assert_message_has("'difuse' is not known (did you mean 'diffuse'?)");
+    const char *bad_key = "{\"bsdfs\": {\"grey\": {\"type\": \"diffuse\", \"reflectanse\": 0.5}}, \"shapes\": []}";
+    assert_int_equal(ppm_scene_file_load_memory(f->context, bad_key, strlen(bad_key), "typo.json", f->folder, NULL,
+                                                &file),
+                     PPM_ERROR_PARSE);
+    assert_message_has("bsdfs.grey.reflectanse: unknown key (did you mean 'reflectance'?)");
+    assert_null(file);
+}
+
 static void test_bad_options_are_refused(void **state) {
     fixture *f = *state;
     const char *path = write_file(f, "box.xml", box_xml);
@@ -258,6 +276,7 @@ int main(void) {
                                         teardown),
         cmocka_unit_test_setup_teardown(test_scene_from_text_resolves_names_against_the_folder, setup, teardown),
         cmocka_unit_test_setup_teardown(test_bad_options_are_refused, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_misspellings_get_a_suggestion, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -63,7 +63,7 @@ static void test_context_double_null_and_unknown(void **state) {
     assert_ppm_error(ppm_context_set_double(NULL, "threads", 1), PPM_ERROR_INVALID_ARGUMENT, "context");
     assert_ppm_error(ppm_context_set_double(f->context, NULL, 1), PPM_ERROR_INVALID_ARGUMENT, "key");
     assert_ppm_error(ppm_context_set_double(f->context, "thraeds", 1), PPM_ERROR_INVALID_ARGUMENT,
-                     "unknown context setting 'thraeds' (known: threads (int))");
+                     "unknown context setting 'thraeds' (did you mean 'threads'?) (known: threads (int))");
     assert_ppm_error(ppm_context_get_double(NULL, "threads", &value), PPM_ERROR_INVALID_ARGUMENT, "context");
     assert_ppm_error(ppm_context_get_double(f->context, NULL, &value), PPM_ERROR_INVALID_ARGUMENT, "key");
     assert_ppm_error(ppm_context_get_double(f->context, "threads", NULL), PPM_ERROR_INVALID_ARGUMENT, "out_value");
@@ -189,6 +189,8 @@ static void test_renderer_typed_settings(void **state) {
     assert_ppm_error(ppm_renderer_set_string(r, "seed", "3"), PPM_ERROR_INVALID_ARGUMENT,
                      "'seed' is an integer setting");
     assert_ppm_error(ppm_renderer_set_int(r, "photons", 3), PPM_ERROR_INVALID_ARGUMENT, "(settings: mode,");
+    assert_ppm_error(ppm_renderer_set_int(r, "photons_per_pas", 3), PPM_ERROR_INVALID_ARGUMENT,
+                     "'photons_per_pas' (did you mean 'photons_per_pass'?)");
     assert_ppm_error(ppm_renderer_get_double(r, NULL, &d), PPM_ERROR_INVALID_ARGUMENT, "key");
     assert_ppm_error(ppm_renderer_get_double(NULL, "alpha", &d), PPM_ERROR_INVALID_ARGUMENT, "renderer");
     assert_ppm_error(ppm_renderer_set_int(r, NULL, 1), PPM_ERROR_INVALID_ARGUMENT, "key");

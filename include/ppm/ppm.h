@@ -502,12 +502,17 @@ typedef struct ppm_camera_v2 {
     double origin[3];       /* default (0, 0, 0) */
     double target[3];       /* default (0, 0, 1) */
     double up[3];           /* default (0, 1, 0) */
-    double fov;             /* degrees, in (0, 180); default 45 */
+    double fov;             /* degrees along x, in (0, 180); default 39.597752709049864 */
     uint32_t width, height; /* pixels, each in 1 .. 2^28; no default (0 is refused) */
     double aperture_radius; /* scene units, >= 0; default 0 (pinhole) */
     double focus_distance;  /* scene units, > 0 when aperture_radius > 0; default 0 */
-    double near_clip;       /* scene units, >= 0; default 0 (rays start at the lens) */
-    uint64_t reserved[8];   /* room for fields to come without changing size; 0 */
+    double near_clip;       /* scene units, >= 0; default 0.01 (0: rays start at the lens) */
+    /* Crop window: only the pixels [crop_x0, crop_x1) x [crop_y0, crop_y1) of the width x
+     * height image are rendered, projected as in the whole image; the renderer's image is
+     * crop_x1 - crop_x0 by crop_y1 - crop_y0 pixels. 0 <= x0 < x1 <= width and
+     * 0 <= y0 < y1 <= height; all four 0 (default): the whole image. */
+    uint32_t crop_x0, crop_y0, crop_x1, crop_y1;
+    uint64_t reserved[6]; /* room for fields to come without changing size; 0 */
 } ppm_camera_v2;
 
 /* Sets *camera to the defaults above, `size` to sizeof(ppm_camera_v2) and every other byte
@@ -519,7 +524,10 @@ static inline void ppm_camera_v2_init(ppm_camera_v2 *camera) {
     camera->size = sizeof *camera;
     camera->target[2] = 1;
     camera->up[1] = 1;
-    camera->fov = 45;
+    /* Mitsuba 3's perspective sensor defaults, which scene files and Python share: the fov
+     * of a 50 mm lens on 36 mm film, and its near clip. */
+    camera->fov = 39.597752709049864;
+    camera->near_clip = 0.01;
 }
 
 /* A renderer for a committed scene seen through `camera`. The caller owns the one reference
@@ -784,6 +792,12 @@ PPM_API ppm_status ppm_scene_file_get_camera_v2(ppm_scene_file file, ppm_camera_
  * the caller owns the one reference returned. Errors: as ppm_renderer_create (for example
  * INVALID_OPERATION when the file's scene was changed and not committed again). */
 PPM_API ppm_status ppm_scene_file_create_renderer(ppm_scene_file file, ppm_renderer *out_renderer);
+/* The same seen through `camera` instead of the file's (NULL: the file's): typically the
+ * file's camera (ppm_scene_file_get_camera_v2) with another image size or a crop window.
+ * Settings the file gives in pixels (initial_radius_pixels) follow the new pixel size.
+ * Errors: as ppm_renderer_create_v2. */
+PPM_API ppm_status ppm_scene_file_create_renderer_v2(ppm_scene_file file, const ppm_camera_v2 *camera,
+                                                     ppm_renderer *out_renderer);
 /* Read-only values of the file (typed settings: see the top of this header): "passes" (int,
  * integrator.passes, 0 when not given) and "time" (double, integrator.time in seconds, 0
  * when not given). Errors: INVALID_ARGUMENT (NULL, unknown key, wrong type). */

@@ -44,6 +44,12 @@ template <class Camera> ppm::CameraSettings from_fields(const Camera &camera) {
     return c;
 }
 
+int crop_coordinate(uint32_t value, const char *name) {
+    if (value > (1u << 28))
+        invalid_argument(std::string("camera ") + name + " must be at most 2^28, not " + std::to_string(value));
+    return static_cast<int>(value);
+}
+
 } // namespace
 
 ppm::CameraSettings camera_settings(const ppm_camera *camera) {
@@ -68,7 +74,12 @@ ppm::CameraSettings camera_settings(const ppm_camera_v2 *camera) {
     std::memcpy(&known, camera, std::min(size, sizeof known));
     for (size_t i = 0; i < sizeof known.reserved / sizeof known.reserved[0]; ++i)
         if (known.reserved[i] != 0) invalid_argument("camera reserved[" + std::to_string(i) + "] is not 0");
-    return from_fields(known);
+    ppm::CameraSettings settings = from_fields(known);
+    settings.crop_x0 = crop_coordinate(known.crop_x0, "crop_x0");
+    settings.crop_y0 = crop_coordinate(known.crop_y0, "crop_y0");
+    settings.crop_x1 = crop_coordinate(known.crop_x1, "crop_x1");
+    settings.crop_y1 = crop_coordinate(known.crop_y1, "crop_y1");
+    return settings;
 }
 
 void write_camera(const ppm::CameraSettings &settings, ppm_camera_v2 *out) {
@@ -87,6 +98,10 @@ void write_camera(const ppm::CameraSettings &settings, ppm_camera_v2 *out) {
     camera.aperture_radius = settings.aperture_radius;
     camera.focus_distance = settings.focus_distance;
     camera.near_clip = settings.near_clip;
+    camera.crop_x0 = static_cast<uint32_t>(settings.crop_x0);
+    camera.crop_y0 = static_cast<uint32_t>(settings.crop_y0);
+    camera.crop_x1 = static_cast<uint32_t>(settings.crop_x1);
+    camera.crop_y1 = static_cast<uint32_t>(settings.crop_y1);
     std::memcpy(out, &camera, std::min(size, sizeof camera));
     if (size > sizeof camera)
         std::memset(reinterpret_cast<unsigned char *>(out) + sizeof camera, 0, size - sizeof camera);

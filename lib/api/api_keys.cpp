@@ -1,6 +1,7 @@
 #include "api/api_keys.h"
 
 #include "core/error.h"
+#include "core/suggest.h"
 
 #include <cmath>
 #include <cstring>
@@ -19,9 +20,13 @@ KeyType KeyTable::find(const char *key) const {
     for (std::size_t i = 0; i < count; ++i)
         if (std::strcmp(keys[i].name, key) == 0) return keys[i].type;
     std::string known;
-    for (std::size_t i = 0; i < count; ++i)
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < count; ++i) {
         known += std::string(i ? ", " : "") + keys[i].name + (keys[i].type == KeyType::Int ? " (int)" : " (double)");
-    invalid_argument("unknown " + std::string(what) + " '" + key + "' (known: " + known + ")");
+        names.emplace_back(keys[i].name);
+    }
+    invalid_argument("unknown " + std::string(what) + " '" + key + "'" + did_you_mean(key, names) +
+                     " (known: " + known + ")");
 }
 
 void KeyTable::require_int(const char *key) const {

@@ -161,6 +161,19 @@ ppm_status ppm_scene_file_create_renderer(ppm_scene_file file, ppm_renderer *out
     });
 }
 
+ppm_status ppm_scene_file_create_renderer_v2(ppm_scene_file file, const ppm_camera_v2 *camera,
+                                             ppm_renderer *out_renderer) {
+    if (!camera) return ppm_scene_file_create_renderer(file, out_renderer);
+    return file_call(file, [&](ppm::SceneFile &f) {
+        require(out_renderer, "out_renderer");
+        ppm_renderer renderer = nullptr;
+        if (const ppm_status status = ppm_renderer_create_v2(f.scene(), camera, &renderer); status != PPM_OK)
+            ppm::fail(status, ppm_last_error_message());
+        renderer->settings() = f.settings();
+        *out_renderer = renderer;
+    });
+}
+
 ppm_status ppm_scene_file_get_int(ppm_scene_file file, const char *key, int64_t *out_value) {
     return file_call(file, [&](ppm::SceneFile &f) {
         kFileKeys.require_int(key); // "passes" is the only integer key

@@ -49,13 +49,26 @@ Camera::Camera(const CameraSettings &s) {
 
     origin_ = s.origin;
     tan_half_fov_ = std::tan(0.5 * s.fov * (kPi / 180.0));
+    aspect_ = double(s.width) / double(s.height);
+    x_scale_ = 2.0 * tan_half_fov_ / s.width;
+    y_scale_ = 2.0 * tan_half_fov_ / aspect_ / s.height;
     width_ = s.width;
     height_ = s.height;
-    aspect_ = double(s.width) / double(s.height);
-    x_left_ = tan_half_fov_;
-    y_top_ = tan_half_fov_ / aspect_;
-    x_scale_ = 2.0 * x_left_ / width_;
-    y_scale_ = 2.0 * y_top_ / height_;
+    if (s.cropped()) {
+        if (!(0 <= s.crop_x0 && s.crop_x0 < s.crop_x1 && s.crop_x1 <= s.width && 0 <= s.crop_y0 &&
+              s.crop_y0 < s.crop_y1 && s.crop_y1 <= s.height))
+            invalid_argument("camera crop window " + std::to_string(s.crop_x0) + "," + std::to_string(s.crop_y0) + "," +
+                             std::to_string(s.crop_x1) + "," + std::to_string(s.crop_y1) +
+                             " must satisfy 0 <= x0 < x1 <= width and 0 <= y0 < y1 <= height (" +
+                             std::to_string(s.width) + " x " + std::to_string(s.height) + ")");
+        crop_x0_ = s.crop_x0;
+        crop_y0_ = s.crop_y0;
+        width_ = s.crop_x1 - s.crop_x0;
+        height_ = s.crop_y1 - s.crop_y0;
+    }
+    // The cropped image's top-left corner: the full film's, moved by the crop offset.
+    x_left_ = tan_half_fov_ - crop_x0_ * x_scale_;
+    y_top_ = tan_half_fov_ / aspect_ - crop_y0_ * y_scale_;
     aperture_radius_ = s.aperture_radius;
     focus_distance_ = s.focus_distance;
     if (!(s.near_clip >= 0 && std::isfinite(s.near_clip)))
@@ -88,8 +101,8 @@ bool Camera::project(const Vec3 &p, double *x, double *y) const {
     const double z = dot(v, forward_);
     if (!(z > 0)) return false;
     const double px = dot(v, left_) / z, py = dot(v, up_) / z;
-    *x = 0.5 * (1.0 - px / tan_half_fov_) * width_;
-    *y = 0.5 * (1.0 - py * aspect_ / tan_half_fov_) * height_;
+    *x = (x_left_ - px) / x_scale_;
+    *y = (y_top_ - py) / y_scale_;
     return true;
 }
 

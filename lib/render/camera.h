@@ -24,8 +24,14 @@
 //
 // Near clip (Mitsuba's `near_clip`): rays start where they cross the plane local z =
 // near_clip (tnear = near_clip / cos of the angle to the view axis). Mitsuba's default is
-// 0.01; ours is 0, rays start at the lens. There is no far clip, crop window or principal
-// point offset.
+// 0.01; ours is 0, rays start at the lens. There is no far clip or principal point offset.
+//
+// Crop window (Mitsuba's film crop_offset / crop_size): the pixels [crop_x0, crop_x1) x
+// [crop_y0, crop_y1) of the width x height film, projected exactly as in the full image,
+// make an image of crop_x1 - crop_x0 by crop_y1 - crop_y0 pixels; film positions and pixel
+// indices of the camera (generate_ray, project, width, height) are those of the cropped
+// image, and pixel (i, j) of it is pixel (crop_x0 + i, crop_y0 + j) of the full one. All four
+// 0: the whole film.
 #pragma once
 
 #include "math/vec3.h"
@@ -41,6 +47,9 @@ struct CameraSettings {
     double aperture_radius = 0; // scene units; 0 is a pinhole
     double focus_distance = 0;  // scene units along the view axis; > 0 when aperture_radius > 0
     double near_clip = 0;       // scene units along the view axis, >= 0
+    // Crop window in pixels, 0 <= x0 < x1 <= width and 0 <= y0 < y1 <= height; all 0: none.
+    int crop_x0 = 0, crop_y0 = 0, crop_x1 = 0, crop_y1 = 0;
+    bool cropped() const { return crop_x0 != 0 || crop_y0 != 0 || crop_x1 != 0 || crop_y1 != 0; }
 };
 
 struct CameraRay {
@@ -67,8 +76,9 @@ public:
 
     // Width of one pixel on the plane at unit distance along the view axis: a pixel's
     // footprint at depth d is about d times this (for initial photon radii).
-    double pixel_size_at_unit_distance() const { return 2.0 * tan_half_fov_ / width_; }
+    double pixel_size_at_unit_distance() const { return x_scale_; }
 
+    // The size of the image rendered: the crop window's, else the film's.
     int width() const { return width_; }
     int height() const { return height_; }
     bool is_thin_lens() const { return aperture_radius_ > 0; }
@@ -85,6 +95,7 @@ private:
     // per pixel: film to local direction with multiplications only (one ray per pixel and pass).
     double x_left_ = 0, y_top_ = 0, x_scale_ = 0, y_scale_ = 0;
     int width_ = 0, height_ = 0;
+    double crop_x0_ = 0, crop_y0_ = 0;
     double aperture_radius_ = 0, focus_distance_ = 0, near_clip_ = 0;
 };
 

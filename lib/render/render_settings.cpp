@@ -1,6 +1,7 @@
 #include "render/render_settings.h"
 
 #include "core/error.h"
+#include "core/suggest.h"
 #include "math/limits.h"
 
 #include <cmath>
@@ -26,7 +27,11 @@ const char *type_of(const std::string &key) {
     if (const char *actual = type_of(key))
         invalid_argument("unknown " + std::string(type) + " render setting '" + key + "': '" + key + "' is " + actual +
                          " setting");
-    invalid_argument("unknown " + std::string(type) + " render setting '" + key + "' (settings: " + kKeys + ")");
+    const std::vector<std::string> keys = {"mode",           "photons_per_pass",      "alpha",
+                                           "initial_radius", "initial_radius_pixels", "max_depth",
+                                           "seed",           "hit_point_search",      "direct_lighting"};
+    invalid_argument("unknown " + std::string(type) + " render setting '" + key + "'" + did_you_mean(key, keys) +
+                     " (settings: " + kKeys + ")");
 }
 
 void require_not_started(const std::string &key, bool started) {

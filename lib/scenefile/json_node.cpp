@@ -1,6 +1,7 @@
 #include "scenefile/json_node.h"
 
 #include "core/error.h"
+#include "core/suggest.h"
 #include "io/text_file.h"
 
 #include <json/reader.h>
@@ -66,6 +67,10 @@ std::size_t first_unreadable_byte(const std::string &text, std::string &what) {
         }
     }
     return std::string::npos;
+}
+
+std::vector<std::string> names_of(std::initializer_list<const char *> names) {
+    return std::vector<std::string>(names.begin(), names.end());
 }
 
 std::string describe_allowed(std::initializer_list<const char *> allowed) {
@@ -144,7 +149,8 @@ void JsonNode::allow_only(std::initializer_list<const char *> allowed) const {
         const bool known = std::any_of(allowed.begin(), allowed.end(), [&](const char *a) { return key == a; });
         if (!known)
             JsonNode(*document_, (*value_)[key], join_key_path(key_path_, key))
-                .fail("unknown key (allowed here: " + describe_allowed(allowed) + ")");
+                .fail("unknown key" + did_you_mean(key, names_of(allowed)) +
+                      " (allowed here: " + describe_allowed(allowed) + ")");
     }
 }
 
@@ -232,7 +238,7 @@ std::string JsonNode::one_of(std::initializer_list<const char *> choices) const 
     const std::string s = value_->asString();
     for (const char *choice : choices)
         if (s == choice) return s;
-    fail("'" + s + "' is not known; " + expected);
+    fail("'" + s + "' is not known" + did_you_mean(s, names_of(choices)) + "; " + expected);
 }
 
 std::array<double, 3> JsonNode::vec3() const {
