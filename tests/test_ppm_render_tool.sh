@@ -43,16 +43,33 @@ same_image() {
 }
 
 # --- the command line: usage errors exit 1 ----------------------------------------------------------------------
-expect 0 "usage: ppm-render" -- -h
-expect 0 "libppm" -- --version
-expect 1 "no scene file given" --
-expect 1 "unknown option '--frobnicate'" -- "$scene" --frobnicate
-expect 1 "--passes needs a whole number" -- "$scene" --passes -3
-expect 1 "--passes needs a whole number" -- "$scene" --passes many
+expect 0 "Usage: ppm-render" -- -h
+expect 0 "--size WxH" -- --help
+expect 0 "$(sed -n 's/.*project(ppm VERSION \([0-9.]*\).*/\1/p' "$data/../../CMakeLists.txt")" -- --version
+expect 1 "SCENE is required" --
+expect 1 "--frobnicate" -- "$scene" --frobnicate
+expect 1 "--passes: Value -3 not in range" -- "$scene" --passes -3
+expect 1 "--passes: Value many" -- "$scene" --passes many
 expect 1 "--set needs KEY=VALUE" -- "$scene" --set alpha
 expect 1 "unknown layer 'depth'" -- "$scene" --layers depth
+expect 1 "--size needs WIDTHxHEIGHT" -- "$scene" --size 64
+expect 1 "--size needs whole numbers" -- "$scene" --size 64x0
+expect 1 "--crop 8,4,8,9 is empty" -- "$scene" --crop 8,4,8,9
+expect 1 "--crop needs X0,Y0,X1,Y1" -- "$scene" --crop 1,2,3
+expect 1 "-D needs NAME=VALUE" -- "$scene" -D spp
 expect 2 "--set warp=9: unknown" -- "$scene" --set warp=9 -q
+expect 2 "(did you mean 'photons_per_pass'?)" -- "$scene" --set photons_per_pas=9 -q
 expect 2 "--set alpha=7: alpha must be in (0, 1]" -- "$scene" --set alpha=7 -q
+expect 2 "apply to Mitsuba XML scene files only" -- "$scene" -D spp=4 -q
+# Outputs are checked before anything is rendered: no pass runs for an unwritable image.
+expect 2 "the folder $work/nowhere cannot be used" -- "$scene" -o "$work/nowhere/image.png"
+mkdir readonly && chmod a-w readonly
+if [[ -w readonly ]]; then
+  echo "ok: (running as root: a read-only folder is writable, not tested)"
+else
+  expect 2 "cannot write into the folder readonly" -- "$scene" -o readonly/image.png
+fi
+if grep -q "passes" err.txt; then fail "a pass ran before the output was refused: $(cat err.txt)"; fi
 
 # --- bad scene files: a located message and exit status 2 ----------------------------------
 expect 2 "missing.json" -- "$work/missing.json"
@@ -74,6 +91,33 @@ if grep -q "no light source" < <("$render" "$scene" --passes 1 --photons 100 -o 
 else
   echo "ok: no warning for a lit scene"
 fi
+
+# --- image size and crop window --------------------------------------------------------------
+expect 0 "64 x 48, " -- "$scene" --size 64x48 --passes 1 --photons 100 -o sized.exr
+expect 0 "32 x 24 (crop 16,12,48,36)" -- "$scene" --size 64x48 --crop 16,12,48,36 --passes 1 --photons 100 -o cropped.exr
+if iinfo sized.exr | grep -q "64 x   48" && iinfo cropped.exr | grep -q "32 x   24"; then
+  echo "ok: --size and --crop set the image size"
+else
+  fail "image sizes: $(iinfo sized.exr cropped.exr)"
+fi
+expect 2 "--crop 0,0,65,10 reaches beyond the image of 64 x 48 pixels" -- "$scene" --size 64x48 --crop 0,0,65,10
+
+# --- Mitsuba XML: parameters (-D) and lenient reading ------------------------------------------
+cat >ball.xml <<'XML'
+<scene version="3.0.0">
+  <default name="res" value="40"/>
+  <sensor type="perspective">
+    <transform name="to_world"><lookat origin="0, -5, 1" target="0, 0, 1" up="0, 0, 1"/></transform>
+    <film type="hdrfilm"><integer name="width" value="$res"/><integer name="height" value="30"/></film>
+  </sensor>
+  <shape type="sphere"><bsdf type="roughconductor"/></shape>
+  <emitter type="point"><point name="position" x="0" y="-2" z="3"/></emitter>
+</scene>
+XML
+expect 2 "ball.xml:7:" -- ball.xml -q -o ball.png
+expect 0 "warning" -- ball.xml --lenient --passes 1 --photons 100 -o ball.png
+expect 0 "24 x 30, " -- ball.xml --lenient -D res=24 --passes 1 --photons 100 -o ball.png
+expect 0 "parameter 'rez' (-D rez=24) is not used by the scene (did you mean 'res'?)" -- ball.xml --lenient -D rez=24 -q -o ball.png
 
 # --- a render: every output format, layers, nothing temporary left ---------------------------
 expect 0 "4 passes" -- "$scene" -o box.png -o box.exr -o box.jpg -o box.tif --layers radius,photons

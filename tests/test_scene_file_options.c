@@ -117,6 +117,16 @@ static void test_parameters_replace_the_defaults(void **state) {
     assert_int_equal(ppm_scene_file_load_v2(f->context, write_file(f, "box.xml", box_xml), &options, &file), PPM_OK);
     expect_film_and_passes(file, 24, 32, 9);
     ppm_scene_file_release(file);
+    assert_int_equal(f->warnings, 0);
+
+    /* A parameter no $name takes: a warning with the likely meaning, the file still loads. */
+    names[1] = "ssp";
+    assert_int_equal(ppm_scene_file_load_v2(f->context, f->path, &options, &file), PPM_OK);
+    expect_film_and_passes(file, 24, 32, 5);
+    ppm_scene_file_release(file);
+    assert_int_equal(f->warnings, 1);
+    assert_non_null(strstr(f->last_warning, "parameter 'ssp' (-D ssp=9) is not used by the scene (did you mean 'spp'?)"));
+    names[1] = "spp";
 
     /* A value that is not a number where one is needed: located at the element using it. */
     values[0] = "wide";

@@ -696,8 +696,10 @@ typedef struct ppm_image_layer {
     const float *data;
 } ppm_image_layer;
 
-/* Checks that `path` names an image format that ppm_image_write can write (its extension),
- * before a long render finds out. Errors: INVALID_ARGUMENT (NULL, no or unknown extension). */
+/* Checks that ppm_image_write could write `path` before a long render finds out: a format it
+ * writes (by the extension) in a folder that exists and may be written into. Errors:
+ * INVALID_ARGUMENT (NULL, no or unknown extension), IO (no such folder, not a folder, no
+ * permission: the message names the folder and the reason). */
 PPM_API ppm_status ppm_image_check_path(const char *path);
 /* Writes an image atomically (encoded in memory, written beside `path`, synced and renamed):
  * .exr, .hdr and .pfm get linear float RGB radiance as given (EXR also the `layers`, zip

@@ -1,5 +1,6 @@
 // The C API of image files (ppm.h, "Images").
 #include "api/api_support.h"
+#include "io/atomic_file.h"
 #include "io/image_file.h"
 
 #include <vector>
@@ -12,6 +13,7 @@ ppm_status ppm_image_check_path(const char *path) {
     return guarded(nullptr, [&] {
         require(path, "path");
         ppm::check_image_format(path);
+        ppm::check_folder_writable(path);
     });
 }
 

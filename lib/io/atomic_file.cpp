@@ -63,4 +63,16 @@ void write_file_atomically(const std::string &path, const void *data, std::size_
     }
 }
 
+void check_folder_writable(const std::string &path) {
+    const std::size_t slash = path.rfind('/');
+    const std::string folder = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+    struct stat info;
+    if (stat(folder.c_str(), &info) != 0)
+        fail(PPM_ERROR_IO, path + ": the folder " + folder + " cannot be used: " + std::strerror(errno));
+    if (!S_ISDIR(info.st_mode)) fail(PPM_ERROR_IO, path + ": " + folder + " is not a folder");
+    // Creating the temporary file needs write and search permission on the folder.
+    if (access(folder.c_str(), W_OK | X_OK) != 0)
+        fail(PPM_ERROR_IO, path + ": cannot write into the folder " + folder + ": " + std::strerror(errno));
+}
+
 } // namespace ppm

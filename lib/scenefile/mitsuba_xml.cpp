@@ -1,6 +1,7 @@
 #include "scenefile/mitsuba_xml.h"
 
 #include "core/error.h"
+#include "core/suggest.h"
 #include "io/text_file.h"
 #include "math/spectrum.h"
 
@@ -73,6 +74,14 @@ public:
         // also become the scene's named materials.
         for (const Pending &pending : top_level_) convert_top_level(pending);
         if (out_.root["shapes"].empty()) out_.root.removeMember("shapes");
+        // A parameter given from outside that no $name takes is likely a typo: said, not fatal
+        // (Mitsuba accepts it too).
+        const std::vector<std::string> referenced(referenced_.begin(), referenced_.end());
+        for (const auto &define : options_.defines)
+            if (!referenced_.count(define.first))
+                out_.warnings.push_back(path + ": parameter '" + define.first + "' (-D " + define.first + "=" +
+                                        define.second + ") is not used by the scene" +
+                                        did_you_mean(define.first, referenced));
     }
 
 private:
@@ -238,6 +247,7 @@ private:
             while (end < raw.size() && (std::isalnum(static_cast<unsigned char>(raw[end])) || raw[end] == '_')) ++end;
             const std::string name = raw.substr(i + 1, end - i - 1);
             if (name.empty()) error(node, source, "a '$' in '" + raw + "' is not followed by a parameter name");
+            referenced_.insert(name);
             const auto found = parameters_.find(name);
             if (found == parameters_.end())
                 error(node, source,
@@ -674,6 +684,7 @@ private:
     const XmlOptions &options_;
     XmlScene &out_;
     std::map<std::string, std::string> parameters_;
+    mutable std::set<std::string> referenced_; // every $name met, known or not
     std::vector<std::unique_ptr<Source>> sources_;
     std::vector<std::string> include_stack_;
     std::map<std::string, Pending> by_id_;

@@ -47,6 +47,48 @@ void apply_setting(ppm_renderer renderer, const std::string &key, const std::str
         check(ppm_renderer_set_string(renderer, key.c_str(), value.c_str()), "--set " + key + "=" + value);
 }
 
+// The scene file with the command line's XML parameters and leniency.
+void load_scene_file(ppm_context context, const Options &options, ppm_scene_file *out_file) {
+    std::vector<const char *> names, values;
+    for (const auto &[name, value] : options.defines) {
+        names.push_back(name.c_str());
+        values.push_back(value.c_str());
+    }
+    ppm_scene_file_options load_options;
+    ppm_scene_file_options_init(&load_options);
+    load_options.define_names = names.data();
+    load_options.define_values = values.data();
+    load_options.define_count = names.size();
+    load_options.lenient = options.lenient ? 1 : 0;
+    const ppm_status status = ppm_scene_file_load_v2(context, options.scene.c_str(), &load_options, out_file);
+    if (status == PPM_ERROR_INVALID_ARGUMENT && !options.defines.empty())
+        throw ApiError{"-D: " + std::string(ppm_last_error_message())};
+    check(status);
+}
+
+// A renderer of the file's camera, resized (--size) and cropped (--crop) as asked.
+void create_renderer(ppm_scene_file file, const Options &options, ppm_renderer *out_renderer) {
+    ppm_camera_v2 camera;
+    ppm_camera_v2_init(&camera);
+    check(ppm_scene_file_get_camera_v2(file, &camera), options.scene);
+    if (options.width > 0) {
+        camera.width = options.width;
+        camera.height = options.height;
+    }
+    if (options.cropped()) {
+        if (options.crop[2] > camera.width || options.crop[3] > camera.height)
+            throw ApiError{"--crop " + std::to_string(options.crop[0]) + "," + std::to_string(options.crop[1]) + "," +
+                           std::to_string(options.crop[2]) + "," + std::to_string(options.crop[3]) +
+                           " reaches beyond the image of " + std::to_string(camera.width) + " x " +
+                           std::to_string(camera.height) + " pixels"};
+        camera.crop_x0 = options.crop[0];
+        camera.crop_y0 = options.crop[1];
+        camera.crop_x1 = options.crop[2];
+        camera.crop_y1 = options.crop[3];
+    }
+    check(ppm_scene_file_create_renderer_v2(file, &camera, out_renderer), options.scene);
+}
+
 Image read_image(ppm_renderer renderer, const Options &options) {
     int64_t width = 0, height = 0;
     check(ppm_renderer_get_int(renderer, "width", &width));
@@ -175,8 +217,8 @@ int render(const Options &options, SignalWatcher &signals) {
 
     check(ppm_context_create(&context), "creating the context");
     if (options.threads > 0) check(ppm_context_set_int(context, "threads", options.threads), "--threads");
-    check(ppm_scene_file_load(context, options.scene.c_str(), &file));
-    check(ppm_scene_file_create_renderer(file, &renderer), options.scene);
+    load_scene_file(context, options, &file);
+    create_renderer(file, options, &renderer);
     // Partial renders are pass-independent whatever the scene's mode.
     if (options.partial_render()) check(ppm_renderer_set_string(renderer, "mode", "pppm"), "--partial");
     if (options.photons > 0) check(ppm_renderer_set_int(renderer, "photons_per_pass", options.photons), "--photons");
@@ -214,9 +256,12 @@ int render(const Options &options, SignalWatcher &signals) {
     char mode[16] = "";
     check(ppm_renderer_get_string(renderer, "mode", mode, sizeof mode, nullptr));
     if (!options.quiet) {
-        std::fprintf(stderr, "ppm-render: %s: %lld x %lld, %s, %lld photons/pass, ", options.scene.c_str(),
-                     static_cast<long long>(width), static_cast<long long>(height), mode,
-                     static_cast<long long>(photons_per_pass));
+        std::fprintf(stderr, "ppm-render: %s: %lld x %lld", options.scene.c_str(), static_cast<long long>(width),
+                     static_cast<long long>(height));
+        if (options.cropped())
+            std::fprintf(stderr, " (crop %u,%u,%u,%u)", options.crop[0], options.crop[1], options.crop[2],
+                         options.crop[3]);
+        std::fprintf(stderr, ", %s, %lld photons/pass, ", mode, static_cast<long long>(photons_per_pass));
         if (options.partial_render()) {
             std::fprintf(stderr, "passes %llu-%llu of %llu (%zu to render) -> partial %s",
                          static_cast<unsigned long long>(range_first), static_cast<unsigned long long>(range_end - 1),
@@ -336,26 +381,14 @@ int render(const Options &options, SignalWatcher &signals) {
 
 int main(int argc, char **argv) {
     Options options;
-    try {
-        options = parse_options(argc, argv);
-    } catch (const UsageError &e) {
-        std::fprintf(stderr, "ppm-render: %s\nTry 'ppm-render -h' for help.\n", e.what());
-        return 1;
-    }
-    if (options.help) {
-        std::fputs(usage_text, stdout);
-        return 0;
-    }
-    if (options.version) {
-        std::printf("ppm-render (libppm %s)\n", ppm_version_string());
-        return 0;
-    }
+    if (const int status = parse_options(argc, argv, &options); status >= 0) return status;
+    // Before any work: an output the render could not write is found now, not after it.
+    // A format libppm cannot write is a usage error; a missing or read-only folder a runtime one.
     for (const std::string &path : options.outputs) {
-        try {
-            check_image_format(path);
-        } catch (const std::exception &e) {
-            std::fprintf(stderr, "ppm-render: %s\n", e.what());
-            return 1;
+        const ppm_status status = ppm_image_check_path(path.c_str());
+        if (status != PPM_OK) {
+            std::fprintf(stderr, "ppm-render: -o %s\n", ppm_last_error_message());
+            return status == PPM_ERROR_INVALID_ARGUMENT ? 1 : 2;
         }
     }
     SignalWatcher signals; // before libppm creates threads: they inherit the blocked signals

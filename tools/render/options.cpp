@@ -1,175 +1,223 @@
 #include "options.h"
 
-#include <cerrno>
-#include <cmath>
+#include "common/command_line.h"
+
 #include <cstdlib>
-#include <cstring>
 
 namespace ppm_render {
 
-const char *const usage_text =
-    "usage: ppm-render SCENE.json [-o OUTPUT]... [options]\n"
-    "Renders a scene file (docs/scene-format.md) by progressive photon mapping. The image is\n"
-    "rewritten atomically as the render converges, so it can be watched and is never lost.\n"
-    "\n"
-    "output:\n"
-    "  -o, --output PATH     image to write, repeatable: .exr (linear float radiance), .png,\n"
-    "                        .jpg/.jpeg, .tif (sRGB 8-bit with --exposure); default\n"
-    "                        <scene name>.png in the current folder\n"
-    "  --exposure EV         scales 8-bit images by 2^EV before sRGB encoding (default 0)\n"
-    "  --layers LIST         extra EXR channels, comma separated: radius (gather radius in\n"
-    "                        scene units), photons (the alpha-reduced photon count N)\n"
-    "  --write-interval S    rewrite the images at most every S seconds (default 1; 0: after\n"
-    "                        every pass); they are always written at the end\n"
-    "rendering (override the scene file's integrator):\n"
-    "  --passes N            total passes (default: integrator.passes, else 16, or unlimited\n"
-    "                        with --time)\n"
-    "  --photons N           photon paths per pass\n"
-    "  --time SECONDS        wall-clock budget: no pass starts that would end after it, and a\n"
-    "                        pass still running at the deadline is abandoned\n"
-    "  --seed N              random sequence (same seed and passes: same image)\n"
-    "  --threads N           worker threads (default: all)\n"
-    "  --set KEY=VALUE       any renderer setting (mode, alpha, initial_radius, max_depth,\n"
-    "                        hit_point_search, direct_lighting, ...), repeatable\n"
-    "checkpoints:\n"
-    "  --checkpoint PATH     where checkpoints go (default <first output>.ppmckpt); written on\n"
-    "                        SIGINT/SIGTERM, every --checkpoint-interval, and at the end when\n"
-    "                        this option is given\n"
-    "  --checkpoint-interval S  seconds between periodic checkpoints (default 300; 0: never)\n"
-    "  --resume PATH         continue a render from its checkpoint: with the same scene and\n"
-    "                        options, the result equals the uninterrupted render\n"
-    "render farms (passes rendered apart and merged exactly with ppm-merge):\n"
-    "  --pass-range A:B      render passes A .. B-1 of the --passes N (0 <= A < B <= N) in\n"
-    "                        the pass-independent mode \"pppm\"; needs --partial\n"
-    "  --partial PATH        save the passes as a partial render (.ppmpart) instead of an\n"
-    "                        image (images only with -o); it is also the checkpoint, so\n"
-    "                        --resume PATH goes on with the missing passes of the range\n"
-    "other:\n"
-    "  -q, --quiet           no progress bar, no summary (errors are still printed)\n"
-    "  --version             print the libppm version\n"
-    "  -h, --help            this text\n"
-    "\n"
-    "SIGINT or SIGTERM (Ctrl-C) abandons the running pass, writes the images and a checkpoint\n"
-    "and exits 0; a second one exits at once. The progress bar (pass, photons/s, ETA) goes to\n"
-    "stderr when it is a terminal.\n"
-    "Exit status: 0 done (also when interrupted), 1 usage error (options), 2 runtime error\n"
-    "(a bad or missing scene file, setting or checkpoint, an unwritable image).\n";
-
 namespace {
 
-double parse_number(const std::string &option, const char *text, double low) {
-    char *end = nullptr;
-    const double value = std::strtod(text, &end);
-    if (end == text || *end != '\0' || !std::isfinite(value) || value < low)
-        throw UsageError(option + " needs a number >= " + std::to_string(static_cast<long long>(low)) + ", not '" +
-                         text + "'");
-    return value;
+using ppm_tools::UsageError;
+
+const char *const description =
+    "Renders a scene file by progressive photon mapping: libppm's JSON (docs/scene-format.md)\n"
+    "or a Mitsuba 3 XML file. The image is rewritten atomically as the render converges, so it\n"
+    "can be watched and is never lost.";
+
+const char *const footer = "SIGINT or SIGTERM (Ctrl-C) abandons the running pass, writes the images and a checkpoint\n"
+                           "and exits 0; a second one exits at once. The progress bar (pass, photons/s, ETA) goes to\n"
+                           "stderr when it is a terminal.\n"
+                           "Exit status: 0 done (also when interrupted), 1 usage error (options), 2 runtime error\n"
+                           "(a bad or missing scene file, setting or checkpoint, an unwritable image).";
+
+// The raw text of the options whose syntax CLI11 does not know; checked after parsing.
+struct RawOptions {
+    std::vector<std::string> defines, settings;
+    std::string layers, size, crop, pass_range;
+};
+
+// "KEY=VALUE" into its two non-empty halves.
+std::pair<std::string, std::string> key_value(const std::string &text, const char *option, const char *form) {
+    const std::size_t equals = text.find('=');
+    if (equals == std::string::npos || equals == 0 || equals + 1 == text.size())
+        throw UsageError(std::string(option) + " needs " + form + ", not '" + text + "'");
+    return {text.substr(0, equals), text.substr(equals + 1)};
 }
 
-std::int64_t parse_integer(const std::string &option, const char *text, std::int64_t low, std::int64_t high) {
+std::vector<std::string> split(const std::string &text, char separator) {
+    std::vector<std::string> items;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t end = text.find(separator, start);
+        items.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
+        if (end == std::string::npos) return items;
+        start = end + 1;
+    }
+}
+
+// A whole number in [low, high] from `text`, else a UsageError naming the option.
+std::int64_t whole_number(const std::string &text, const std::string &option, std::int64_t low, std::int64_t high) {
     char *end = nullptr;
-    errno = 0;
-    const long long value = std::strtoll(text, &end, 10);
-    if (end == text || *end != '\0' || errno != 0 || value < low || value > high)
-        throw UsageError(option + " needs a whole number in " + std::to_string(low) + " .. " + std::to_string(high) +
+    const long long value = std::strtoll(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || value < low || value > high)
+        throw UsageError(option + " needs whole numbers in " + std::to_string(low) + " .. " + std::to_string(high) +
                          ", not '" + text + "'");
     return value;
 }
 
-std::vector<std::string> split_list(const std::string &text) {
-    std::vector<std::string> items;
-    std::size_t start = 0;
-    while (start <= text.size()) {
-        const std::size_t comma = text.find(',', start);
-        const std::size_t end = comma == std::string::npos ? text.size() : comma;
-        if (end > start) items.push_back(text.substr(start, end - start));
-        if (comma == std::string::npos) break;
-        start = comma + 1;
-    }
-    return items;
+// A check whose range the help text states in words already.
+CLI::Validator unlisted(CLI::Validator validator) {
+    validator.description("");
+    return validator;
 }
 
-} // namespace
+void add_options(CLI::App &app, Options &o, RawOptions &raw) {
+    const std::string output = "Output";
+    app.add_option("SCENE", o.scene, "the scene file (.json, or .xml for Mitsuba 3)")->required()->type_name("");
+    app.add_option("-o,--output", o.outputs,
+                   "image to write, repeatable: .exr (linear float\n"
+                   "radiance), .png, .jpg, .tif (sRGB 8-bit, see\n"
+                   "--exposure); default <scene name>.png here")
+        ->allow_extra_args(false)
+        ->type_name("PATH")
+        ->group(output);
+    app.add_option("--exposure", o.exposure, "scales 8-bit images by 2^EV before sRGB (default 0)")
+        ->check(unlisted(CLI::Range(-100.0, 100.0)))
+        ->type_name("EV")
+        ->group(output);
+    app.add_option("--layers", raw.layers,
+                   "extra EXR channels, comma separated: radius (gather\n"
+                   "radius in scene units), photons (the photon count N)")
+        ->type_name("LIST")
+        ->group(output);
+    app.add_option("--write-interval", o.write_interval,
+                   "rewrite the images at most every S seconds (default 1;\n"
+                   "0: after every pass); always written at the end")
+        ->check(unlisted(CLI::NonNegativeNumber))
+        ->type_name("S")
+        ->group(output);
 
-Options parse_options(int argc, char **argv) {
-    Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        const auto value = [&]() -> const char * {
-            if (i + 1 >= argc) throw UsageError(arg + " needs a value");
-            return argv[++i];
-        };
-        if (arg == "-h" || arg == "--help") {
-            o.help = true;
-        } else if (arg == "--version") {
-            o.version = true;
-        } else if (arg == "-q" || arg == "--quiet") {
-            o.quiet = true;
-        } else if (arg == "-o" || arg == "--output") {
-            o.outputs.push_back(value());
-        } else if (arg == "--exposure") {
-            const char *text = value();
-            char *end = nullptr;
-            o.exposure = std::strtod(text, &end);
-            if (end == text || *end != '\0' || !std::isfinite(o.exposure) || std::fabs(o.exposure) > 100)
-                throw UsageError("--exposure needs a number of stops in [-100, 100], not '" + std::string(text) + "'");
-        } else if (arg == "--layers") {
-            for (const std::string &layer : split_list(value())) {
-                if (layer != "radius" && layer != "photons")
-                    throw UsageError("--layers: unknown layer '" + layer + "' (layers: radius, photons)");
-                o.layers.push_back(layer);
-            }
-        } else if (arg == "--write-interval") {
-            o.write_interval = parse_number(arg, value(), 0);
-        } else if (arg == "--passes") {
-            o.passes = parse_integer(arg, value(), 1, std::int64_t(1) << 40);
-        } else if (arg == "--photons") {
-            o.photons = parse_integer(arg, value(), 1, std::int64_t(1) << 31);
-        } else if (arg == "--time") {
-            o.time = parse_number(arg, value(), 0);
-        } else if (arg == "--seed") {
-            o.seed = parse_integer(arg, value(), 0, std::int64_t(1) << 53);
-        } else if (arg == "--threads") {
-            o.threads = parse_integer(arg, value(), 1, 1024);
-        } else if (arg == "--set") {
-            const std::string setting = value();
-            const std::size_t equals = setting.find('=');
-            if (equals == std::string::npos || equals == 0 || equals + 1 == setting.size())
-                throw UsageError("--set needs KEY=VALUE, not '" + setting + "'");
-            o.settings.emplace_back(setting.substr(0, equals), setting.substr(equals + 1));
-        } else if (arg == "--checkpoint") {
-            o.checkpoint = value();
-            o.checkpoint_given = true;
-        } else if (arg == "--checkpoint-interval") {
-            o.checkpoint_interval = parse_number(arg, value(), 0);
-        } else if (arg == "--resume") {
-            o.resume = value();
-        } else if (arg == "--pass-range") {
-            const std::string text = value();
-            const std::size_t colon = text.find(':');
-            if (colon == std::string::npos)
-                throw UsageError("--pass-range needs A:B (passes A .. B-1), not '" + text + "'");
-            o.pass_first = parse_integer(arg, text.substr(0, colon).c_str(), 0, std::int64_t(1) << 32);
-            o.pass_end = parse_integer(arg, text.substr(colon + 1).c_str(), 1, std::int64_t(1) << 32);
-            if (o.pass_first >= o.pass_end)
-                throw UsageError("--pass-range " + text + " is empty: A must be below B (passes A .. B-1)");
-        } else if (arg == "--partial") {
-            o.partial = value();
-        } else if (!arg.empty() && arg[0] == '-') {
-            throw UsageError("unknown option '" + arg + "'");
-        } else if (o.scene.empty()) {
-            o.scene = arg;
-        } else {
-            throw UsageError("more than one scene file given ('" + o.scene + "' and '" + arg + "')");
+    const std::string scene = "Scene (override the file)";
+    app.add_option("-D", raw.defines,
+                   "a parameter of an XML file (its <default name=...>),\n"
+                   "repeatable: -D spp=64 -D res=512")
+        ->allow_extra_args(false)
+        ->type_name("NAME=VALUE")
+        ->group(scene);
+    app.add_flag("--lenient", o.lenient,
+                 "render what is supported of an XML file: unknown BSDFs\n"
+                 "become grey diffuse, unknown emitters and textures are\n"
+                 "left out, each with a warning (default: an error)")
+        ->group(scene);
+    app.add_option("--size", raw.size,
+                   "image size in pixels, e.g. 640x480 (default the film's);\n"
+                   "radii given in pixels follow")
+        ->type_name("WxH")
+        ->group(scene);
+    app.add_option("--crop", raw.crop,
+                   "render only pixels x0 .. x1-1, y0 .. y1-1 of the image\n"
+                   "(after --size); the output is that window")
+        ->type_name("X0,Y0,X1,Y1")
+        ->group(scene);
+
+    const std::string rendering = "Rendering (override the file's integrator)";
+    app.add_option("--passes", o.passes,
+                   "total passes (default: integrator.passes, else 16,\n"
+                   "or unlimited with --time)")
+        ->check(unlisted(CLI::Range(std::int64_t(1), std::int64_t(1) << 40)))
+        ->type_name("N")
+        ->group(rendering);
+    app.add_option("--photons", o.photons, "photon paths per pass")
+        ->check(unlisted(CLI::Range(std::int64_t(1), std::int64_t(1) << 31)))
+        ->type_name("N")
+        ->group(rendering);
+    app.add_option("--time", o.time,
+                   "wall-clock budget: no pass starts that would end\n"
+                   "after it; a pass running at the deadline is abandoned")
+        ->check(unlisted(CLI::NonNegativeNumber))
+        ->type_name("SECONDS")
+        ->group(rendering);
+    app.add_option("--seed", o.seed, "random sequence (same seed and passes: same image)")
+        ->check(unlisted(CLI::Range(std::int64_t(0), std::int64_t(1) << 53)))
+        ->type_name("N")
+        ->group(rendering);
+    app.add_option("--threads", o.threads, "worker threads (default: all)")
+        ->check(unlisted(CLI::Range(std::int64_t(1), std::int64_t(1024))))
+        ->type_name("N")
+        ->group(rendering);
+    app.add_option("--set", raw.settings,
+                   "any renderer setting (mode, alpha, initial_radius,\n"
+                   "max_depth, hit_point_search, direct_lighting, ...),\n"
+                   "repeatable")
+        ->allow_extra_args(false)
+        ->type_name("KEY=VALUE")
+        ->group(rendering);
+
+    const std::string checkpoints = "Checkpoints";
+    app.add_option("--checkpoint", o.checkpoint,
+                   "where checkpoints go (default <first output>.ppmckpt);\n"
+                   "written on SIGINT/SIGTERM, every --checkpoint-interval,\n"
+                   "and at the end when this option is given")
+        ->type_name("PATH")
+        ->group(checkpoints);
+    app.add_option("--checkpoint-interval", o.checkpoint_interval,
+                   "seconds between periodic checkpoints (default 300;\n"
+                   "0: never)")
+        ->check(unlisted(CLI::NonNegativeNumber))
+        ->type_name("S")
+        ->group(checkpoints);
+    app.add_option("--resume", o.resume,
+                   "continue a render from its checkpoint: with the same\n"
+                   "scene and options, the result equals the uninterrupted\n"
+                   "render")
+        ->type_name("PATH")
+        ->group(checkpoints);
+
+    const std::string farms = "Render farms (passes rendered apart, merged exactly by ppm-merge)";
+    app.add_option("--pass-range", raw.pass_range,
+                   "render passes A .. B-1 of the --passes N in the\n"
+                   "pass-independent mode \"pppm\"; needs --partial")
+        ->type_name("A:B")
+        ->group(farms);
+    app.add_option("--partial", o.partial,
+                   "save the passes as a partial render (.ppmpart) instead\n"
+                   "of an image (images only with -o); it is also the\n"
+                   "checkpoint: --resume PATH renders the missing passes")
+        ->type_name("PATH")
+        ->group(farms);
+
+    app.add_flag("-q,--quiet", o.quiet, "no progress bar, no summary (errors are still printed)");
+}
+
+// The options CLI11 took as text, and the rules between options.
+void finish(Options &o, const RawOptions &raw, bool checkpoint_given) {
+    o.checkpoint_given = checkpoint_given;
+    for (const std::string &define : raw.defines) o.defines.push_back(key_value(define, "-D", "NAME=VALUE"));
+    for (const std::string &setting : raw.settings) o.settings.push_back(key_value(setting, "--set", "KEY=VALUE"));
+    if (!raw.layers.empty())
+        for (const std::string &layer : split(raw.layers, ',')) {
+            if (layer != "radius" && layer != "photons")
+                throw UsageError("--layers: unknown layer '" + layer + "' (layers: radius, photons)");
+            o.layers.push_back(layer);
         }
+    if (!raw.size.empty()) {
+        const std::vector<std::string> wh = split(raw.size, 'x');
+        if (wh.size() != 2) throw UsageError("--size needs WIDTHxHEIGHT such as 640x480, not '" + raw.size + "'");
+        o.width = static_cast<std::uint32_t>(whole_number(wh[0], "--size", 1, std::int64_t(1) << 16));
+        o.height = static_cast<std::uint32_t>(whole_number(wh[1], "--size", 1, std::int64_t(1) << 16));
     }
-    if (o.help || o.version) return o;
-    if (o.scene.empty()) throw UsageError("no scene file given");
+    if (!raw.crop.empty()) {
+        const std::vector<std::string> corners = split(raw.crop, ',');
+        if (corners.size() != 4) throw UsageError("--crop needs X0,Y0,X1,Y1 such as 0,0,64,48, not '" + raw.crop + "'");
+        for (int k = 0; k < 4; ++k)
+            o.crop[k] = static_cast<std::uint32_t>(whole_number(corners[k], "--crop", 0, std::int64_t(1) << 16));
+        if (o.crop[0] >= o.crop[2] || o.crop[1] >= o.crop[3])
+            throw UsageError("--crop " + raw.crop + " is empty: X0 < X1 and Y0 < Y1 are needed");
+    }
+    if (!raw.pass_range.empty()) {
+        const std::size_t colon = raw.pass_range.find(':');
+        if (colon == std::string::npos)
+            throw UsageError("--pass-range needs A:B (passes A .. B-1), not '" + raw.pass_range + "'");
+        o.pass_first = whole_number(raw.pass_range.substr(0, colon), "--pass-range", 0, std::int64_t(1) << 32);
+        o.pass_end = whole_number(raw.pass_range.substr(colon + 1), "--pass-range", 1, std::int64_t(1) << 32);
+        if (o.pass_first >= o.pass_end)
+            throw UsageError("--pass-range " + raw.pass_range + " is empty: A must be below B (passes A .. B-1)");
+    }
     if (o.pass_first >= 0 && !o.partial_render())
         throw UsageError("--pass-range needs --partial PATH: the passes are saved as a partial render");
     if (o.pass_first >= 0 && o.passes > 0 && o.pass_end > o.passes)
-        throw UsageError("--pass-range " + std::to_string(o.pass_first) + ":" + std::to_string(o.pass_end) +
-                         " goes beyond --passes " + std::to_string(o.passes));
+        throw UsageError("--pass-range " + raw.pass_range + " goes beyond --passes " + std::to_string(o.passes));
     if (o.partial_render()) {
         for (const auto &[key, value] : o.settings)
             if (key == "mode" && value != "pppm")
@@ -177,7 +225,7 @@ Options parse_options(int argc, char **argv) {
         if (o.checkpoint_given)
             throw UsageError("--partial PATH is the checkpoint of a partial render; --checkpoint is not needed");
         o.checkpoint = o.partial;
-        return o;
+        return;
     }
     if (o.outputs.empty()) {
         std::string name = o.scene.substr(o.scene.rfind('/') == std::string::npos ? 0 : o.scene.rfind('/') + 1);
@@ -191,7 +239,23 @@ Options parse_options(int argc, char **argv) {
         if (dot != std::string::npos && dot > 0 && base.find('/', dot) == std::string::npos) base.resize(dot);
         o.checkpoint = base + ".ppmckpt";
     }
-    return o;
+}
+
+} // namespace
+
+int parse_options(int argc, char **argv, Options *options) {
+    CLI::App app(description, "ppm-render");
+    ppm_tools::configure(app, footer);
+    Options &o = *options;
+    RawOptions raw;
+    add_options(app, o, raw);
+    if (const int status = ppm_tools::parse(app, argc, argv); status >= 0) return status;
+    try {
+        finish(o, raw, app.count("--checkpoint") > 0);
+    } catch (const UsageError &e) {
+        return ppm_tools::report_usage_error(app, e.what());
+    }
+    return -1;
 }
 
 } // namespace ppm_render
