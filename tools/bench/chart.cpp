@@ -1,5 +1,7 @@
 #include "chart.h"
 
+#include "data_files.h"
+
 #include <cstdio>
 #include <cstdlib>
 #include <sys/stat.h>
@@ -24,7 +26,7 @@ bool exists(const std::string &path) {
 } // namespace
 
 bool draw_chart(const std::string &csv_path, const std::string &dir) {
-    const std::string script = PPM_SOURCE_DIR "/tools/bench/plot_bench.py";
+    const std::string script = data_file("plot_bench.py");
     const std::string by_hand = "python3 " + quoted(script) + " --csv " + quoted(csv_path) + " --out " + quoted(dir);
     if (!exists(script)) {
         std::fprintf(stderr, "ppm-bench intersect: note: no chart: %s is missing; with the script, run: %s\n",

@@ -1,4 +1,4 @@
-// Runs tools/bench/plot_bench.py on the CSV when python3 with matplotlib is available.
+// Runs plot_bench.py (tools/bench/, copied to the data folder: data_files.h) on the CSV when python3 with matplotlib is available.
 #pragma once
 
 #include <string>

@@ -1,19 +1,18 @@
 // Command line of `ppm-bench intersect`.
 #pragma once
 
-#include "option_values.h" // ParseResult
+#include "common/command_line.h"
 
 #include <cstdint>
-#include <cstdio>
 #include <string>
 #include <vector>
 
 namespace bench {
 
 struct IntersectOptions {
-    std::string bpt_path = PPM_SOURCE_DIR "/tests/data/teapot.bpt"; // the repository copy
-    size_t rays = 20000;                                            // random rays; the other sets scale with it
-    int width = 256, height = 256;                                  // camera rays
+    std::string bpt_path;          // empty: teapot.bpt in the data folder (data_files.h)
+    size_t rays = 20000;           // random rays; the other sets scale with it
+    int width = 256, height = 256; // camera rays
     std::vector<std::string> sets = {"random", "camera", "grazing", "seams", "poles", "leaving"};
     std::vector<double> angles = {1e-2, 1e-3, 1e-4, 1e-6};
     std::vector<std::string> methods = {"exact", "newton", "embree", "adaptive", "cgal"};
@@ -38,9 +37,10 @@ struct IntersectOptions {
     bool has_set(const std::string &name) const;
 };
 
-// Parses argv[first..argc). On error prints the reason to stderr.
-ParseResult parse_intersect_args(int argc, char **argv, int first, IntersectOptions &options);
+// Adds the subcommand `intersect` to `app`; parsing it fills `options`.
+CLI::App *add_intersect_command(CLI::App &app, IntersectOptions &options);
 
-void print_intersect_usage(std::FILE *out);
+// What CLI11 cannot check alone, after parsing; throws ppm_tools::UsageError.
+void check_intersect_options(const IntersectOptions &options);
 
 } // namespace bench

@@ -2,6 +2,7 @@
 
 #include "bpt_patches.h"
 #include "chart.h"
+#include "data_files.h"
 #include "driver.h"
 #include "intersect_args.h"
 #include "measure.h"
@@ -153,18 +154,13 @@ std::vector<MethodResult> run_methods(const IntersectOptions &o, const std::vect
 
 } // namespace
 
-int run_intersect_command(int argc, char **argv, int first) {
-    IntersectOptions options;
-    switch (parse_intersect_args(argc, argv, first, options)) {
-    case ParseResult::help: print_intersect_usage(stdout); return 0;
-    case ParseResult::error: std::fprintf(stderr, "run 'ppm-bench intersect -h' for usage\n"); return 1;
-    case ParseResult::run: break;
-    }
+int run_intersect_command(IntersectOptions options) {
     if (options.has_method("cgal") && !cgal_available()) {
         std::fprintf(stderr, "ppm-bench intersect: note: this build has no CGAL; the cgal method is skipped\n");
         options.methods.erase(std::find(options.methods.begin(), options.methods.end(), "cgal"));
     }
     try {
+        options.bpt_path = input_or_data_file(options.bpt_path, "teapot.bpt", "--bpt");
         Stopwatch total;
         const double load_start = load_average();
         const int threads = options.threads > 0 ? options.threads : hardware_threads();

@@ -1,10 +1,11 @@
 // `ppm-bench intersect`: builds every requested structure, traces the ray sets, reports.
 #pragma once
 
+#include "intersect_args.h"
+
 namespace bench {
 
-// argv[first..argc) are the subcommand's options. Returns the process exit code:
-// 0 success, 1 usage error, 2 runtime error.
-int run_intersect_command(int argc, char **argv, int first);
+// Returns the process exit code: 0 success, 1 no rays to trace, 2 runtime error.
+int run_intersect_command(IntersectOptions options);
 
 } // namespace bench

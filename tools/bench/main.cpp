@@ -1,48 +1,39 @@
-// ppm-bench: benchmarks of libppm. Subcommands dispatch to their own files.
+// ppm-bench: benchmarks of libppm. Each subcommand has its own files: the command line in
+// *_args (or render_command), the run in *_command.
 #include "intersect_command.h"
 #include "render_command.h"
 #include "targets_command.h"
 
-#include <ppm/ppm.h>
-
-#include <cstdio>
-#include <cstring>
+#include "common/command_line.h"
 
 namespace {
 
-void print_usage(std::FILE *out) {
-    std::fprintf(out, "usage: ppm-bench <command> [options]\n"
-                      "commands:\n"
-                      "  intersect   speed against accuracy of patch intersection: libppm, naive Newton,\n"
-                      "              Embree and CGAL on tessellations, against a long-double reference\n"
-                      "  render      renderer speed: eye pass time, photon paths/s, memory\n"
-                      "  targets     the exact intersector's speed and memory targets against Embree and CGAL\n"
-                      "              on a uniform mesh, from medians of interleaved timing rounds\n"
-                      "options:\n"
-                      "  -h, --help  this text ('ppm-bench <command> -h' for a command's options)\n"
-                      "  --version   print the libppm version\n");
-}
+const char *const description = "Benchmarks of libppm: the patch intersector against naive methods and triangle-mesh\n"
+                                "baselines, and the renderer's speed.";
+const char *const footer = "'ppm-bench COMMAND --help' lists a command's options. Progress goes to stderr.\n"
+                           "Exit status: 0 ok, 1 usage error, 2 runtime error.";
 
 } // namespace
 
 int main(int argc, char **argv) {
-    if (argc < 2) {
-        print_usage(stderr);
-        return 1;
+    CLI::App app(description, "ppm-bench");
+    ppm_tools::configure(app, footer);
+    bench::IntersectOptions intersect;
+    bench::RenderOptions render;
+    bench::TargetsOptions targets;
+    CLI::App *intersect_command = bench::add_intersect_command(app, intersect);
+    CLI::App *render_command = bench::add_render_command(app, render);
+    CLI::App *targets_command = bench::add_targets_command(app, targets);
+    app.require_subcommand(1);
+    const int parsed = ppm_tools::parse(app, argc, argv);
+    if (parsed >= 0) return parsed;
+    try {
+        if (intersect_command->parsed()) bench::check_intersect_options(intersect);
+        if (targets_command->parsed()) bench::check_targets_options(targets);
+    } catch (const ppm_tools::UsageError &e) {
+        return ppm_tools::report_usage_error(app, e.what());
     }
-    const char *command = argv[1];
-    if (!std::strcmp(command, "-h") || !std::strcmp(command, "--help")) {
-        print_usage(stdout);
-        return 0;
-    }
-    if (!std::strcmp(command, "--version")) {
-        std::printf("%s\n", ppm_version_string());
-        return 0;
-    }
-    if (!std::strcmp(command, "intersect")) return bench::run_intersect_command(argc, argv, 2);
-    if (!std::strcmp(command, "render")) return bench::run_render_command(argc, argv, 2);
-    if (!std::strcmp(command, "targets")) return bench::run_targets_command(argc, argv, 2);
-    std::fprintf(stderr, "ppm-bench: unknown command '%s'\n", command);
-    print_usage(stderr);
-    return 1;
+    if (intersect_command->parsed()) return bench::run_intersect_command(intersect);
+    if (render_command->parsed()) return bench::run_render_command(render);
+    return bench::run_targets_command(targets);
 }

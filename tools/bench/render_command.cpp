@@ -2,6 +2,7 @@
 
 #include "bench_scenes.h"
 #include "check_status.h"
+#include "data_files.h"
 
 #include <ppm/ppm.h>
 
@@ -9,9 +10,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -20,85 +18,11 @@ namespace bench {
 
 namespace {
 
-struct RenderOptions {
-    std::vector<std::string> scenes{"smallppm", "teapot-glass"};
-    std::vector<std::string> searches{"grid", "kdtree"};
-    std::vector<long> photon_counts{100000, 1000000};
-    int width = 1024, height = 768;
-    int passes = 4;
-    int threads = 0;
-    std::string teapot = PPM_SOURCE_DIR "/tests/data/teapot.bpt";
-    std::string image_dir;
-};
-
-void print_usage(std::FILE *out) {
-    std::fprintf(out, "usage: ppm-bench render [options]\n"
-                      "Times the renderer's passes: eye pass seconds, photon paths per second and peak\n"
-                      "memory, per scene, hit-point search and photons per pass; build_s is the part of\n"
-                      "eye_s spent building the hit-point search. Figures are medians over the passes.\n"
-                      "  --scenes LIST      smallppm,teapot-glass (default both)\n"
-                      "  --search LIST      grid,kdtree (default both)\n"
-                      "  --photons LIST     photons per pass, in increasing order to see whether memory\n"
-                      "                     grows with them (default 100000,1000000)\n"
-                      "  --width N, --height N  image size (default 1024 x 768)\n"
-                      "  --passes N         passes per configuration (default 4; figures are medians)\n"
-                      "  --threads N        worker threads (default 0 = all)\n"
-                      "  --teapot PATH      the .bpt of teapot-glass (default tests/data/teapot.bpt)\n"
-                      "  --images DIR       write each final image as DIR/<scene>-<search>.pfm (linear)\n");
-}
-
-std::vector<std::string> split(const std::string &text) {
-    std::vector<std::string> parts;
-    std::stringstream in(text);
-    for (std::string part; std::getline(in, part, ',');)
-        if (!part.empty()) parts.push_back(part);
-    return parts;
-}
-
-long parse_long(const char *text, const char *option, long lo, long hi) {
-    char *end = nullptr;
-    const long v = std::strtol(text, &end, 10);
-    if (!*text || *end || v < lo || v > hi)
-        throw std::runtime_error(std::string(option) + " expects a whole number in " + std::to_string(lo) + ".." +
-                                 std::to_string(hi) + ", not '" + text + "'");
-    return v;
-}
-
-RenderOptions parse(int argc, char **argv, int first) {
-    RenderOptions o;
-    for (int i = first; i < argc; ++i) {
-        const std::string arg = argv[i];
-        if (arg == "-h" || arg == "--help") {
-            print_usage(stdout);
-            std::exit(0);
-        }
-        if (i + 1 >= argc) throw std::runtime_error("unknown option or missing value: " + arg);
-        const char *value = argv[++i];
-        if (arg == "--scenes")
-            o.scenes = split(value);
-        else if (arg == "--search")
-            o.searches = split(value);
-        else if (arg == "--photons") {
-            o.photon_counts.clear();
-            for (const std::string &p : split(value))
-                o.photon_counts.push_back(parse_long(p.c_str(), "--photons", 1, 1l << 31));
-        } else if (arg == "--width")
-            o.width = static_cast<int>(parse_long(value, "--width", 1, 16384));
-        else if (arg == "--height")
-            o.height = static_cast<int>(parse_long(value, "--height", 1, 16384));
-        else if (arg == "--passes")
-            o.passes = static_cast<int>(parse_long(value, "--passes", 1, 100000));
-        else if (arg == "--threads")
-            o.threads = static_cast<int>(parse_long(value, "--threads", 0, 1024));
-        else if (arg == "--teapot")
-            o.teapot = value;
-        else if (arg == "--images")
-            o.image_dir = value;
-        else
-            throw std::runtime_error("unknown option: " + arg);
-    }
-    return o;
-}
+const char *const description = "Renderer speed: eye pass time, photon paths/s, memory";
+const char *const footer = "Times the renderer's passes: eye pass seconds, photon paths per second and peak\n"
+                           "memory, per scene, hit-point search and photons per pass; build_s is the part of\n"
+                           "eye_s spent building the hit-point search. Figures are medians over the passes.\n"
+                           "Exit status: 0 ok, 1 usage error, 2 runtime error.";
 
 double peak_rss_mib() {
     rusage usage{};
@@ -123,9 +47,49 @@ void write_pfm(const std::string &path, ppm_renderer renderer, int w, int h) {
 
 } // namespace
 
-int run_render_command(int argc, char **argv, int first) {
+CLI::App *add_render_command(CLI::App &app, RenderOptions &o) {
+    CLI::App *command = app.add_subcommand("render", description);
+    command->footer(footer);
+    auto list = [&](const std::string &name, std::vector<std::string> &out, const std::vector<std::string> &known,
+                    const std::string &help) {
+        command->add_option(name, out, help)
+            ->delimiter(',')
+            ->check(CLI::IsMember(known).description(""))
+            ->type_name("LIST")
+            ->allow_extra_args(false);
+    };
+    list("--scenes", o.scenes, {"smallppm", "teapot-glass"}, "smallppm,teapot-glass (default both)");
+    list("--search", o.searches, {"grid", "kdtree"}, "grid,kdtree (default both)");
+    command
+        ->add_option("--photons", o.photon_counts,
+                     "photons per pass, in increasing order to see whether\n"
+                     "memory grows with them (default 100000,1000000)")
+        ->delimiter(',')
+        ->check(CLI::Range(1L, 1L << 31))
+        ->type_name("LIST")
+        ->allow_extra_args(false);
+    command->add_option("--width", o.width, "image width (default 1024)")->check(CLI::Range(1, 16384))->type_name("N");
+    command->add_option("--height", o.height, "image height (default 768)")
+        ->check(CLI::Range(1, 16384))
+        ->type_name("N");
+    command->add_option("--passes", o.passes, "passes per configuration (default 4; figures are\nmedians)")
+        ->check(CLI::Range(1, 100000))
+        ->type_name("N");
+    command->add_option("--threads", o.threads, "worker threads (default 0 = all)")
+        ->check(CLI::Range(0, 1024))
+        ->type_name("N");
+    command->add_option("--teapot", o.teapot, "the .bpt of teapot-glass (default " + data_file("teapot.bpt") + ")")
+        ->type_name("PATH");
+    command->add_option("--images", o.image_dir, "write each final image as DIR/<scene>-<search>.pfm\n(linear)")
+        ->type_name("DIR");
+    return command;
+}
+
+int run_render_command(const RenderOptions &options) {
     try {
-        const RenderOptions o = parse(argc, argv, first);
+        RenderOptions o = options;
+        if (std::find(o.scenes.begin(), o.scenes.end(), "teapot-glass") != o.scenes.end())
+            o.teapot = input_or_data_file(o.teapot, "teapot.bpt", "--teapot");
         ppm_context context = nullptr;
         check(ppm_context_create(&context), "ppm_context_create");
         check(ppm_context_set_int(context, "threads", o.threads), "ppm_context_set_int");

@@ -1,100 +1,71 @@
 #include "targets_args.h"
 
-#include "option_values.h"
+#include "bench_options.h"
+#include "data_files.h"
 
 #include <algorithm>
-#include <cstring>
 
 namespace bench {
 
 namespace {
 
-constexpr const char *command = "ppm-bench targets";
-
-bool bad(const std::string &option, const std::string &value, const char *expected) {
-    return report_bad_value(command, option, value, expected);
-}
-
-// Without duplicates, which would only time the same method twice under one name.
-bool presplit_list(const std::string &option, const std::string &value, std::vector<int> &out) {
-    constexpr const char *expected = "a list like 3,12 of patch_presplit values in [1, 32]";
-    if (value == "none" || !parse_integer_list(value, 1, 32, out) || out.empty()) return bad(option, value, expected);
-    std::vector<int> distinct;
-    for (int n : out)
-        if (std::find(distinct.begin(), distinct.end(), n) == distinct.end()) distinct.push_back(n);
-    out = distinct;
-    return true;
-}
-
-bool apply(const std::string &option, const std::string &value, TargetsOptions &o) {
-    switch (apply_ray_set_option(command, option, value, o)) {
-    case OptionMatch::taken: return true;
-    case OptionMatch::invalid: return false;
-    case OptionMatch::other: break;
-    }
-    long long n = 0;
-    if (option == "--presplit") {
-        return presplit_list(option, value, o.presplits);
-    } else if (option == "--grid") {
-        if (!parse_integer(value, 1, 4096, n)) return bad(option, value, "an integer in [1, 4096]");
-        o.grid = int(n);
-    } else if (option == "--rounds") {
-        if (!parse_integer(value, 1, 1000, n)) return bad(option, value, "an integer in [1, 1000]");
-        o.rounds = int(n);
-    } else if (option == "--csv") {
-        o.csv_path = value;
-    } else {
-        std::fprintf(stderr, "%s: unknown option '%s'\n", command, option.c_str());
-        return false;
-    }
-    return true;
-}
+const char *const description = "The exact intersector's speed and memory targets against Embree\n"
+                                "and CGAL on a uniform mesh, from medians of interleaved timing\n"
+                                "rounds";
+const char *const footer = "Checks the speed and memory targets of libppm's exact intersector against the same model\n"
+                           "tessellated as a uniform mesh and traced by Embree and by CGAL's AABB tree: at least 0.5\n"
+                           "times Embree's speed and 5 times CGAL's on random rays, at least 1000 times less memory\n"
+                           "than either. Every method is built once on one thread; then, in each round, each method\n"
+                           "(in an order rotated from round to round) traces each ray set on one thread, and a speed\n"
+                           "ratio is taken within the round. Verdicts use the median of those per-round ratios, so a\n"
+                           "load burst on a shared machine moves one round, not the verdict.\n"
+                           "Exit status: 0 ok (whatever the verdicts), 1 usage error, 2 runtime error.";
 
 } // namespace
 
-void print_targets_usage(std::FILE *out) {
-    const TargetsOptions d;
-    std::fprintf(out,
-                 "usage: ppm-bench targets [options]\n"
-                 "Checks the speed and memory targets of libppm's exact intersector against the same model\n"
-                 "tessellated as a uniform mesh and traced by Embree and by CGAL's AABB tree: at least 0.5\n"
-                 "times Embree's speed and 5 times CGAL's on random rays, at least 1000 times less memory\n"
-                 "than either. Every method is built once on one thread; then, in each round, each method\n"
-                 "(in an order rotated from round to round) traces each ray set on one thread, and a speed\n"
-                 "ratio is taken within the round. Verdicts use the median of those per-round ratios, so a\n"
-                 "load burst on a shared machine moves one round, not the verdict. The exit status does not\n"
-                 "depend on the verdicts.\n"
-                 "  --bpt FILE            patches to load (default %s)\n"
-                 "  --presplit LIST       exact method at these scene patch_presplit values, methods\n"
-                 "                        exact-presplit-N (default 3,12)\n"
-                 "  --grid N              the meshes have N x N quads per patch (default %d)\n"
-                 "  --rays N              random rays (default %zu; 0 skips the set and the speed targets)\n"
-                 "  --width W --height H  camera rays (default %d x %d; 0 x 0 skips the set)\n"
-                 "  --rounds K            timing rounds (default %d)\n"
-                 "  --min-time S          each timing traces its set again until S seconds have passed\n"
-                 "                        (default %g; rays/s come from process CPU time)\n"
-                 "  --seed S              seed of the random rays (default %llu)\n"
-                 "  --csv FILE            every timing, one row per round, method and ray set\n"
-                 "  -h, --help            this text\n",
-                 d.bpt_path.c_str(), d.grid, d.rays, d.width, d.height, d.rounds, d.min_seconds,
-                 (unsigned long long)d.seed);
+CLI::App *add_targets_command(CLI::App &app, TargetsOptions &o) {
+    CLI::App *command = app.add_subcommand("targets", description);
+    command->footer(footer);
+    command->add_option("--bpt", o.bpt_path, "patches to load (default " + data_file("teapot.bpt") + ")")
+        ->type_name("FILE");
+    add_number_list(*command, "--presplit", o.presplits, 1, 32, false,
+                    "a list like 3,12 of patch_presplit values in [1, 32]",
+                    "exact method at these scene patch_presplit values,\n"
+                    "methods exact-presplit-N (default 3,12)");
+    command->add_option("--grid", o.grid, "the meshes have N x N quads per patch (default 128)")
+        ->check(CLI::Range(1, 4096))
+        ->type_name("N");
+    command->add_option("--rays", o.rays, "random rays (default 20000; 0 skips the set and the\nspeed targets)")
+        ->check(CLI::Range(0, 100000000))
+        ->type_name("N");
+    command->add_option("--width", o.width, "camera rays across (default 256; 0 with --height 0 skips\nthe set)")
+        ->check(CLI::Range(0, 16384))
+        ->type_name("W");
+    command->add_option("--height", o.height, "camera rays down (default 256)")
+        ->check(CLI::Range(0, 16384))
+        ->type_name("H");
+    command->add_option("--rounds", o.rounds, "timing rounds (default 9)")->check(CLI::Range(1, 1000))->type_name("K");
+    command
+        ->add_option("--min-time", o.min_seconds,
+                     "each timing traces its set again until S seconds have\n"
+                     "passed (default 0.2; rays/s come from process CPU time)")
+        ->check(real_in(0, 60))
+        ->type_name("S");
+    command->add_option("--seed", o.seed, "seed of the random rays (default 1)")
+        ->check(CLI::Range(uint64_t(0), uint64_t(INT64_MAX)).description(""))
+        ->type_name("S");
+    command->add_option("--csv", o.csv_path, "every timing, one row per round, method and ray set")->type_name("FILE");
+    return command;
 }
 
-ParseResult parse_targets_args(int argc, char **argv, int first, TargetsOptions &options) {
-    const ParseResult read =
-        read_options(command, argc, argv, first, [&](const std::string &option, const std::string &value) {
-            return apply(option, value, options);
-        });
-    if (read != ParseResult::run) return read;
-    if ((options.width == 0) != (options.height == 0)) {
-        std::fprintf(stderr, "%s: --width and --height must both be 0 or both positive\n", command);
-        return ParseResult::error;
-    }
-    if (options.rays == 0 && options.width == 0) {
-        std::fprintf(stderr, "%s: no rays to trace (--rays 0 and --width 0)\n", command);
-        return ParseResult::error;
-    }
-    return ParseResult::run;
+void check_targets_options(TargetsOptions &o) {
+    if ((o.width == 0) != (o.height == 0))
+        throw ppm_tools::UsageError("targets: --width and --height must both be 0 or both positive");
+    if (o.rays == 0 && o.width == 0) throw ppm_tools::UsageError("targets: no rays to trace (--rays 0 and --width 0)");
+    std::vector<int> distinct;
+    for (int n : o.presplits)
+        if (std::find(distinct.begin(), distinct.end(), n) == distinct.end()) distinct.push_back(n);
+    o.presplits = distinct;
 }
 
 } // namespace bench

@@ -1,30 +1,31 @@
 // Command line of `ppm-bench targets`.
 #pragma once
 
-#include "option_values.h" // ParseResult
+#include "common/command_line.h"
 
 #include <cstdint>
-#include <cstdio>
 #include <string>
 #include <vector>
 
 namespace bench {
 
 struct TargetsOptions {
-    std::string bpt_path = PPM_SOURCE_DIR "/tests/data/teapot.bpt"; // the repository copy
-    std::vector<int> presplits = {3, 12};                           // exact method at these scene patch_presplit values
-    int grid = 128;                                                 // the meshes: grid x grid quads per patch
-    size_t rays = 20000;                                            // random rays
-    int width = 256, height = 256;                                  // camera rays
+    std::string bpt_path;                 // empty: teapot.bpt in the data folder (data_files.h)
+    std::vector<int> presplits = {3, 12}; // exact method at these scene patch_presplit values
+    int grid = 128;                       // the meshes: grid x grid quads per patch
+    size_t rays = 20000;                  // random rays
+    int width = 256, height = 256;        // camera rays
     int rounds = 9;
     double min_seconds = 0.2; // per timing of one method on one set
     uint64_t seed = 1;
     std::string csv_path; // empty: no CSV
 };
 
-// Parses argv[first..argc). On error prints the reason to stderr.
-ParseResult parse_targets_args(int argc, char **argv, int first, TargetsOptions &options);
+// Adds the subcommand `targets` to `app`; parsing it fills `options`.
+CLI::App *add_targets_command(CLI::App &app, TargetsOptions &options);
 
-void print_targets_usage(std::FILE *out);
+// What CLI11 cannot check alone, after parsing; throws ppm_tools::UsageError. Drops repeated
+// presplit values, which would only time the same method twice under one name.
+void check_targets_options(TargetsOptions &options);
 
 } // namespace bench

@@ -1,6 +1,7 @@
 #include "targets_command.h"
 
 #include "bpt_patches.h"
+#include "data_files.h"
 #include "interleaved_rounds.h"
 #include "measure.h"
 #include "method.h"
@@ -57,16 +58,11 @@ std::vector<RaySet> make_ray_sets(const TargetsOptions &o, const Bounds &box) {
 
 } // namespace
 
-int run_targets_command(int argc, char **argv, int first) {
-    TargetsOptions options;
-    switch (parse_targets_args(argc, argv, first, options)) {
-    case ParseResult::help: print_targets_usage(stdout); return 0;
-    case ParseResult::error: std::fprintf(stderr, "run 'ppm-bench targets -h' for usage\n"); return 1;
-    case ParseResult::run: break;
-    }
+int run_targets_command(TargetsOptions options) {
     if (!cgal_available())
         std::fprintf(stderr, "ppm-bench targets: note: this build has no CGAL; the cgal method is skipped\n");
     try {
+        options.bpt_path = input_or_data_file(options.bpt_path, "teapot.bpt", "--bpt");
         Stopwatch total;
         const double load_start = load_average();
         const std::vector<double> patches = read_bpt_patches(options.bpt_path);

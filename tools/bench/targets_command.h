@@ -2,10 +2,11 @@
 // uniform mesh in Embree and CGAL, timing the methods in interleaved rounds.
 #pragma once
 
+#include "targets_args.h"
+
 namespace bench {
 
-// argv[first..argc) are the subcommand's options. Returns the process exit code:
-// 0 success (whatever the verdicts), 1 usage error, 2 runtime error.
-int run_targets_command(int argc, char **argv, int first);
+// Returns the process exit code: 0 success (whatever the verdicts), 2 runtime error.
+int run_targets_command(TargetsOptions options);
 
 } // namespace bench
