@@ -160,6 +160,27 @@ for tool in ppm-render ppm-merge ppm-tess ppm-bench; do
   fi
 done
 
+# The installed tools at work from the copied prefix, on the data it ships (share/ppm/), with
+# no loader path and nothing from the repository.
+data="$moved/share/ppm"
+installed_run() { env -u LD_LIBRARY_PATH "$@" >>"$work/installed-tools.log" 2>&1; }
+if [[ -f "$data/teapot.bpt" && -f "$data/scenes/teapot-cornell.json" ]] && (
+  cd "$work" &&
+    installed_run "$moved/bin/ppm-render" "$data/scenes/teapot-cornell.json" --size 32x24 --passes 2 \
+      --photons 2000 -o installed.exr -q &&
+    installed_run "$moved/bin/ppm-render" "$data/scenes/teapot-cornell.json" --size 32x24 --passes 2 \
+      --photons 2000 --pass-range 0:2 --partial installed.ppmpart -q &&
+    installed_run "$moved/bin/ppm-merge" installed.ppmpart -o merged.exr -q &&
+    installed_run "$moved/bin/ppm-tess" "$data/teapot.bpt" -o teapot.obj &&
+    installed_run "$moved/bin/ppm-bench" targets --rays 200 --width 16 --height 16 --rounds 1 --min-time 0 --grid 4 &&
+    [[ -s installed.exr && -s merged.exr && -s teapot.obj ]]
+); then
+  pass "installed tools: ppm-render, ppm-merge, ppm-tess and ppm-bench run on share/ppm/ from the copied prefix"
+else
+  cat "$work/installed-tools.log"
+  fail "installed tools on share/ppm/ (log above)"
+fi
+
 library="$prefix/lib/libppm.so"
 soname=$(readelf -d "$library" | sed -n 's/.*Library soname: \[\(.*\)\].*/\1/p')
 if [[ "$soname" == libppm.so.0 ]]; then
