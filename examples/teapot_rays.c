@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * teapot_rays: a complete libppm program in one screen or two.
  *

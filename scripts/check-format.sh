@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Fails when a C or C++ file of the repository differs from what .clang-format makes of it,
 # and names the files. Run by ctest (test "format"); `clang-format -i FILE` fixes a file.
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Fails when a file under lib/ includes a header of a layer above its own (docs/architecture.md
 # draws the layers). Run by ctest (test "layers").
 set -euo pipefail

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Sourced by scripts/setup.sh, scripts/test.sh and .ci/run: the Debian packages the project
 # needs and the one way the Release build is configured, so that setup.sh and test.sh share
 # build/ without reconfiguring it.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Builds the libFuzzer targets of tests/fuzz/ with clang (ASan + UBSan) and fuzzes them.
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # README command 1: prepares a Debian bookworm machine and shows libppm working.
 #
 #   sudo bash scripts/setup.sh      (or, as root: bash scripts/setup.sh)

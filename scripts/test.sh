@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # README command 2: builds and tests everything. Assumes scripts/setup.sh has run.
 #
 #   bash scripts/test.sh

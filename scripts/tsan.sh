@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # ThreadSanitizer run of the tests labelled "threads". Assumes scripts/setup.sh has run.
 #
 #   bash scripts/tsan.sh          (also run by bash scripts/test.sh, unless --no-tsan)

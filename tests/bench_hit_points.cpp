@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Micro-benchmark of the photon-pass search structures: nanoflann KD-tree (HitPointTree)
 // against the hashed grid (HitPointGrid), on the hit points of a 1024x768 view into the
 // smallppm Cornell box, with per-pixel radii like a render's, and 1M photons landing on its

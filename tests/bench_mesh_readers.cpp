@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Loading speed of the mesh readers: a grid mesh of about 1M triangles written as binary
 // PLY, ASCII PLY, Mitsuba serialized and OBJ, each parsed from memory a few times. Prints the
 // best CPU time of each and its ratio to the binary PLY; not a test (timings are not checked).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Every public function with NULL and invalid arguments: the documented status, a message that
  * names the culprit, untouched outputs, and an empty message after the next success. Also
  * reference counting, the error callback and the version queries. */

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Bezier patch math against analytic answers: Bernstein basis, evaluation, derivatives,
 // De Casteljau splitting, normals (including the limit normal at collapsed edges).
 #include "geometry/bezier.h"

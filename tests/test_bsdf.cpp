@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // BSDFs against closed forms: the Fresnel equations (normal incidence, Brewster's angle,
 // total internal reflection, energy balance), the Lambert pdf, sampled albedos against the
 // analytic ones, reciprocity, and the radiance/importance asymmetry of refraction.

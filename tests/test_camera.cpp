@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Look-at camera against geometry worked out by hand: where the centre and the fov edges
 // look, square pixels for any aspect ratio, the thin lens focus, and input validation.
 #include "core/error.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The extensible camera (ppm_camera_v2): defaults, the same images as the first camera
  * struct, round trips through the renderer and scene files, and the size rules that let it
  * grow: too small or implausible sizes refused, a newer caller's zero tail accepted and its

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Checkpoints: a render stopped and resumed equals the uninterrupted render bit for bit, and
  * every kind of wrong checkpoint is refused with a message that says why. */
 #include <ppm/ppm.h>

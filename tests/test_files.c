@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Loading .bpt and OBJ files: malformed files written to a temporary directory at test time
  * must fail with IO or PARSE and a message naming the file (and line), leave the scene as it
  * was, and valid files must load. */

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The photon-pass search structures (nanoflann KD-tree and hashed grid) against brute force:
 // random points with random radii, photons exactly at a hit point's radius, flat and
 // degenerate sets, empty and one-point sets, duplicates, rebuilds, and no allocation per query.

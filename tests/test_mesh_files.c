@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* PLY and Mitsuba serialized meshes through the C API: a square written to a file loads,
  * is hit where it lies, reports what it skips through the warning callback, and damaged or
  * missing files are refused with their name in the message. */

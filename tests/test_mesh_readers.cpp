@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The PLY and Mitsuba serialized mesh readers: the same quad written as ASCII, binary little
 // and big endian PLY and as serialized (versions 3 and 4, float and double) reads back to the
 // same mesh; every kind of damage is a located error; skipped data is reported.

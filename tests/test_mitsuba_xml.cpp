@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Mitsuba XML scene files read into libppm's scene structure: parameters and their
 // substitution, includes, references, transforms, the sensor's field of view, the integrator
 // and sampler, lenient substitutes, and located errors for malformed or inconsistent files.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Partial renders ("pppm" mode): passes rendered apart, in any order and with any thread
  * count, merge into the same bits as one renderer rendering them all; every kind of wrong
  * partial (corrupt, truncated, foreign, overlapping) is refused with a message saying why. */

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Ray / patch intersection against exact answers: a planar patch, a bicubic that is exactly
 // the hyperbolic paraboloid z = x y, and a degree-elevated biquadratic (z = x^2 + y^2). The
 // expected t, u, v come from solving the (at most quadratic) equations in closed form.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # ppm-render end to end: options, exit statuses, located scene errors, atomic outputs,
 # interrupt-and-resume equal to an uninterrupted render, and the --time budget.
 #

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # ppm-tess on a scene file: every Bezier shape, placed by its to_world, in one mesh; other
 # shapes skipped; scene errors located.
 #

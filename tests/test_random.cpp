@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Counter-based random numbers: Philox4x32-10 against Random123's known answers, the
 // statistics of the uniforms (mean, variance, histogram, correlations across dimensions,
 // samples, passes and streams), and reproducibility independent of order and thread count.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Embree masks (Scene::ray_mask): a ray leaving a quad, and a shadow ray running to an area
 // light, skip that geometry before any callback. The masks must change no answer: a stack of
 // 40 parallel quads (more than Embree's 32 mask bits, so the last ones are skipped by their

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Scene::intersect_stream (a camera's rays traced by Embree as one coherent stream) must give
 // exactly what one Scene::intersect per ray gives: the callbacks of every kind (patches,
 // quads, spheres inside the BVH, triangle meshes through their filter) find each ray's query

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The renderer against analytic answers through the public C API:
  *  - white furnace: a closed box of diffuse walls (albedo r) that all emit Le has radiance
  *    Le / (1 - r) everywhere, also seen through glass, in a mirror and on a coated object of

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # ppm-render --pass-range/--partial and ppm-merge end to end: a render split into ranges
 # (different thread counts, merged in any order) gives the image of one process rendering all
 # passes, bit for bit; a partial resumes; foreign, overlapping, corrupt and incomplete sets and

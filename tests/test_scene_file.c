@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Scene files (docs/scene-format.md) through the C API: what a valid file builds, and a clear
  * located error for each kind of bad input. */
 #include <ppm/ppm.h>

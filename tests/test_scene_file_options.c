@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Scene files read with options (ppm_scene_file_load_v2, ppm_scene_file_load_memory): Mitsuba
  * XML chosen by name or content, its parameters, lenient reading with warnings, scenes from
  * text, and the checks of the options struct. */
@@ -125,7 +126,8 @@ static void test_parameters_replace_the_defaults(void **state) {
     expect_film_and_passes(file, 24, 32, 5);
     ppm_scene_file_release(file);
     assert_int_equal(f->warnings, 1);
-    assert_non_null(strstr(f->last_warning, "parameter 'ssp' (-D ssp=9) is not used by the scene (did you mean 'spp'?)"));
+    assert_non_null(
+        strstr(f->last_warning, "parameter 'ssp' (-D ssp=9) is not used by the scene (did you mean 'spp'?)"));
     names[1] = "spp";
 
     /* A value that is not a number where one is needed: located at the element using it. */
@@ -213,15 +215,15 @@ static void test_misspellings_get_a_suggestion(void **state) {
     fixture *f = *state;
     const char *bad_type = "{\"bsdfs\": {\"grey\": {\"type\": \"difuse\"}}, \"shapes\": []}";
     ppm_scene_file file = NULL;
-    assert_int_equal(ppm_scene_file_load_memory(f->context, bad_type, strlen(bad_type), "typo.json", f->folder, NULL,
-                                                &file),
-                     PPM_ERROR_PARSE);
+    assert_int_equal(
+        ppm_scene_file_load_memory(f->context, bad_type, strlen(bad_type), "typo.json", f->folder, NULL, &file),
+        PPM_ERROR_PARSE);
     assert_message_has("typo.json:1:");
     assert_message_has("'difuse' is not known (did you mean 'diffuse'?)");
     const char *bad_key = "{\"bsdfs\": {\"grey\": {\"type\": \"diffuse\", \"reflectanse\": 0.5}}, \"shapes\": []}";
-    assert_int_equal(ppm_scene_file_load_memory(f->context, bad_key, strlen(bad_key), "typo.json", f->folder, NULL,
-                                                &file),
-                     PPM_ERROR_PARSE);
+    assert_int_equal(
+        ppm_scene_file_load_memory(f->context, bad_key, strlen(bad_key), "typo.json", f->folder, NULL, &file),
+        PPM_ERROR_PARSE);
     assert_message_has("bsdfs.grey.reflectanse: unknown key (did you mean 'reflectance'?)");
     assert_null(file);
 }

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The typed settings of contexts, scenes, renderers and scene files (ppm.h, "Typed settings"):
  * each object's int and double getters and setters with NULL arguments, unknown keys, keys of
  * another type, fractional values for integer keys and read-only keys; failed getters leave

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Analytic answers through the public API: spheres, quads, triangle meshes and Bezier
  * patches, with transforms, materials, batches and ppm_hit_spawn_ray. */
 #include <ppm/ppm.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Rays spawned from a patch surface (chord_slope.h): the chord slope bound of a sub-patch
 // holds for chords measured on the original patch, `leaves_for_good` accepts steep rays and
 // declines shallow ones, and a scene query told where its ray starts (the renderer's spawned

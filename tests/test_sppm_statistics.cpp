@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SPPM per-pixel statistics: the radius update against hand-computed values, M = 0, monotone
 // shrinking, the radiance estimate, convergence to a known photon density as passes grow, and
 // bit-identical fixed-point flux sums whatever the order and the number of threads.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // "Did you mean": edit distances worked out by hand, and suggestions only for likely typos.
 #include "core/suggest.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Accuracy of libppm's ray / teapot intersection against an independent reference.
 //
 // The reference (tools/reference/reference_intersector.*) finds ALL roots of a ray with the 32

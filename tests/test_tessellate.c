@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Tessellation through the public API (ppm_tessellate_patches and the ppm_mesh getters),
  * checked with this file's own Bezier evaluation and nearest-point search, not with the
  * library's measurement: distance to the surface on every patch of the teapot, watertightness

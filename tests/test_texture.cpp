@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Image textures through OpenImageIO: an 8-bit PNG is decoded from sRGB to linear, v = 0 is
 // the top row, lookups are bilinear between texel centres and repeat outside [0, 1); bad
 // files give clear errors.

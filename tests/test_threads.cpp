@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Threads through the public C API; ctest label "threads", which scripts/tsan.sh runs under
 // ThreadSanitizer. Every check compares with a single-threaded run, bit for bit:
 //  - passes on several worker threads give the image of one worker thread (SPPM and PPM), and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * libppm — exact ray tracing of bicubic Bezier patches and progressive photon mapping.
  *

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The C ABI of contexts, scenes, ray queries and tessellation (api_render.cpp has materials,
 // lights and the renderer). Only lib/api sees handles: it checks arguments, calls the C++
 // objects and turns every exception into a ppm_status plus the per-thread message.

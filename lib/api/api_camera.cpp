@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "api/api_camera.h"
 
 #include "api/api_support.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The public camera structs (ppm_camera, ppm_camera_v2) to and from the renderer's
 // CameraSettings. Values are checked by ppm::Camera when the renderer is built; here only what
 // the structs themselves can get wrong: NULL, a coordinate beyond the limit, an image side

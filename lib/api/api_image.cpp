@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The C API of image files (ppm.h, "Images").
 #include "api/api_support.h"
 #include "io/atomic_file.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The typed settings of contexts, scenes and scene files (ppm.h, "Typed settings"): one table
 // of keys and types per object, so that all of them answer an unknown key, a key of another
 // type and a fractional value for an integer key alike.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The C API of partial renders (ppm.h, "Partial renders").
 #include "api/api_renderer.h"
 #include "api/api_support.h"

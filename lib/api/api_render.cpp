@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The C ABI of materials, textures, lights and the renderer.
 #include <ppm/ppm.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The renderer handle, shared by the renderer's and the scene file's C API.
 #pragma once
 

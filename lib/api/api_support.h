@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What the files of the C ABI share: the handle types and the wrapper that turns every
 // exception into a ppm_status plus the per-thread message.
 #pragma once

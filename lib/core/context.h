@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The root object: the Embree device, the worker threads, the error callback.
 #pragma once
 

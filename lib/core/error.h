@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Internal error reporting: code below the C ABI throws ppm::Error; lib/api turns it into a
 // ppm_status and the per-thread message. Nothing else crosses the boundary.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Intrusive reference count behind the C handles' retain/release.
 #pragma once
 

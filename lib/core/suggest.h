@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // "Did you mean" for misspelled names: the closest known name by edit distance, when it is
 // close enough to be a likely typo.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Bicubic Bezier patch math: evaluation, derivatives, De Casteljau subdivision, normals.
 //
 // Control point P[i][j] is p[i * 4 + j]; u runs along a row (index j), v across rows (index

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "geometry/chord_slope.h"
 
 #include "geometry/derivative_hull.h"

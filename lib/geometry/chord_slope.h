@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Rays leaving a patch: when can a ray not meet the sub-patch it starts on again?
 //
 // A secondary ray starts a hair off the surface point it leaves, and the sub-patch holding

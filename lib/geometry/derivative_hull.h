@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Interval enclosures of a bicubic's partial derivatives over its whole domain, from the
 // differences of its control values (the derivative's own Bernstein coefficients). Shared by
 // the ray/patch search (Krawczyk test) and the sub-patch chord bound.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A triangle mesh as plain data: what a mesh reader produces and a mesh geometry keeps.
 #pragma once
 

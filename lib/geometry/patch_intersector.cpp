@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "geometry/patch_intersector.h"
 
 #include "geometry/derivative_hull.h"

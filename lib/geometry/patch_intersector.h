@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Exact ray / bicubic patch intersection in ray space.
 //
 // The patch is projected onto a frame whose z axis is the ray: the ray hits S(a, b) where the

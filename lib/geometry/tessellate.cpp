@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The tessellation's two entry points: each patch's piece built and measured in parallel,
 // refined where it fails, then assembled.
 #include "geometry/tessellate.h"

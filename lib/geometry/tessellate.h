@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Tessellation of bicubic Bezier patches into triangles: a uniform grid per patch, or an
 // adaptive mesh whose distance from the surface is measured and held below a tolerance.
 //

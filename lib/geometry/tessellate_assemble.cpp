@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "geometry/tessellate_assemble.h"
 
 #include "geometry/tessellate_budget.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Joins the patches' pieces into one mesh, giving border vertices at one position one welded
 // index.
 #pragma once

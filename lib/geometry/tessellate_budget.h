@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Limits every tessellation stays within, shared by its steps.
 #pragma once
 

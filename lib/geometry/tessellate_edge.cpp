@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "geometry/tessellate_edge.h"
 
 #include "geometry/tessellate_budget.h"

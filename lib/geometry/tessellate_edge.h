@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Patch edges for tessellation: the edge curves in a canonical direction, their points and
 // segment counts, computed from the edge's four control points alone so that the two patches
 // of a seam agree bit for bit.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // measure_deviation (tessellate.h): distances from sample points of triangles to their patch.
 #include "geometry/tessellate.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The error model for a patch's interior grid: the surface's bending sampled over the patch,
 // the grid lines placed by it, and the grid counts whose predicted deviation meets a target.
 #pragma once

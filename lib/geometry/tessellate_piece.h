@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One patch's triangles: a uniform grid, or the adaptive interior grid with a ring stitched to
 // the edge vertices. Each patch is built on its own (in parallel) and assembled later.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Writing a file so that readers (and a crash) see the old or the new content, never a torn
 // mix: the bytes go to a temporary file in the same folder, which is flushed and renamed.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Building blocks of libppm's versioned binary files (checkpoints, partial renders): a byte
 // buffer written field by field, a reader that names the field a truncated file ends in, and
 // the FNV-1a hash their checksums use. Native byte order; the files record a byte-order mark.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reader for .bpt files: a patch count, then per patch a degree line "3 3" and 16 lines of
 // "x y z". '#' starts a comment that runs to the end of the line.
 #pragma once

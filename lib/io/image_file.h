@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Writes images through OpenImageIO, atomically: encoded in memory, then written by
 // write_file_atomically, so a viewer or a crash sees the previous image or the new one, never
 // half of one. EXR, HDR and PFM get linear float radiance (EXR also extra single-channel

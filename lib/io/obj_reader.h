@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reader for Wavefront OBJ meshes (v, vn, vt, f; other statements are skipped). All objects
 // become one triangle mesh; polygons are fanned from their first corner; normals and texture
 // coordinates are kept when every face corner has them.

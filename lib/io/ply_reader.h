@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reader for PLY meshes (the Stanford polygon format, version 1.0, ASCII and binary in either
 // byte order), as Blender, Mitsuba's tools and 3D scanners write them.
 //

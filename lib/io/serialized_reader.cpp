@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Layout (little endian), per mesh:
 //   u16 0x041C, u16 version (3 or 4), then a zlib stream holding
 //   u32 flags (0x0001 normals, 0x0002 texture coordinates, 0x0008 colours, 0x0010 face

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reader for Mitsuba's `serialized` meshes: one or more zlib-compressed triangle meshes in a
 // file, with an index of their offsets at its end (format versions 3 and 4, as Mitsuba 0.5 to
 // 3 write them; the layout is described in serialized_reader.cpp).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Orthonormal shading frame: local coordinates have z along the normal, as the BSDFs expect.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The largest magnitudes a scene may hold. Inputs beyond them are refused where they enter, so
 // that no sum, square or product formed while rendering (squared distances, light power, flux
 // sums, float images) can overflow into inf or NaN.

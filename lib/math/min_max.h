@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Minimum and maximum of 16 doubles, the hot reduction of the patch intersector. GCC does not
 // vectorise min/max reductions of doubles without -ffinite-math-only (which would also remove
 // our NaN checks), so use SSE2, part of every x86-64 CPU, where it is there.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Linear RGB triple for reflectances, path weights and radiance. Double precision like Vec3:
 // photon flux is accumulated over billions of photons, and after ~1e9 additions a float
 // sum loses the bits of each new one.

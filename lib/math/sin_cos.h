@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Sine and cosine for the sampling warps, without libm's general range reduction: the
 // renderer's angles are either within [-pi/4, pi/4] already (the concentric disk map) or
 // 2 pi u for a uniform u in [0, 1), which reduces exactly by octants. Kept because it pays

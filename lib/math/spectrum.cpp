@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Spectra given as wavelength:value lists turned into linear sRGB (Rec. 709) the way Mitsuba 3's
 // RGB variants do (spectrum_list_to_srgb, src/core/spectrum.cpp): the spectrum, linear between
 // its samples and zero outside them, is integrated against the CIE 1931 2-degree colour

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Conversion of sampled spectra to linear sRGB, as Mitsuba 3's RGB variants read <spectrum>
 // values (the rule is described in spectrum.cpp).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Double-precision 3-vector and the few operations the geometry code needs.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "photon/hash_grid.h"
 
 #include "core/error.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Hashed uniform grid over the hit points of one pass, with the same interface as
 // HitPointTree; the renderer's hit_point_search setting picks one of them.
 //

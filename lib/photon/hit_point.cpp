@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "photon/hit_point.h"
 
 #include <tbb/blocked_range.h>

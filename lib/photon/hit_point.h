@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Hit points (SPPM's visible points) as the photon pass sees them, and the visitor type the
 // two search structures (HitPointTree, HitPointGrid) call for every hit point a photon lands in.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "photon/hit_point_tree.h"
 
 #include <nanoflann.hpp>

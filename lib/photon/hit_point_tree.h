@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // KD-tree over the hit points of one pass, answering "which hit points contain this photon?".
 // nanoflann 1.4.3 builds and walks the tree; this header keeps it out of the rest of the
 // library (it is a large header, and its pre-1.5 API differs from later releases). Large sets

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "photon/sppm_statistics.h"
 
 #include "core/error.h"

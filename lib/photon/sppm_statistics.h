@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Per-pixel statistics of stochastic progressive photon mapping (Hachisuka and Jensen 2009)
 // and the accumulator that gathers one pass's photons into them.
 //

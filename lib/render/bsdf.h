@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Surface scattering: Lambertian diffuse, perfect mirror, smooth dielectric (glass) and a
 // smooth dielectric coat over a diffuse base (glazed porcelain, Mitsuba's `plastic`).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Look-at perspective camera, pinhole or thin lens, with Mitsuba 3's conventions so images
 // can be compared pixel for pixel with Mitsuba's `perspective` and `thinlens` sensors.
 //

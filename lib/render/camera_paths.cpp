@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "render/camera_paths.h"
 
 #include "scene/spawn.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What every mode's camera paths share: the jittered camera ray of a pixel, the visible point
 // a path leaves on a non-specular surface with its initial gather radius, and the direct light
 // estimated there by shadow rays.

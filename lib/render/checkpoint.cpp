@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Renderer::save_checkpoint and load_checkpoint: the progressive state in a versioned binary
 // file.
 //

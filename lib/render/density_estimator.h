@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The photon density estimator of one pass: a hit point and a gather point per slot, a search
 // structure over them (hashed grid or KD-tree), and the fixed-point flux accumulator that the
 // photons landing within a hit point's radius add to. The camera paths store points, the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The film: the render's progressive state per slot (a pixel in SPPM, a split camera path in
 // PPM), the pixel each slot belongs to, this pass's direct light, and the pass and photon
 // counts; the image layers are read from it. It knows no camera paths or photons: a pass

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // An integrator mode: how a pass's camera paths make the film's slots, their direct light and
 // the hit points the photons are gathered at. The renderer runs the rest of a pass the same
 // way for every mode (photon tracing, density estimate, statistics update).

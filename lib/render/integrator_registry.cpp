@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The integrator of every mode. The mode's name and number (what checkpoints record) live in
 // render_settings.
 #include "render/integrator.h"

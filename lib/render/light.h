@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Light sources, in Mitsuba 3's units so scenes translate one to one:
 //  - point (`point`): `intensity` I in W/sr, power 4 pi I;
 //  - spot (`spot`): intensity I on the axis, full up to `beam_width` and falling linearly in

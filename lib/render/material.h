@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A material as the renderer uses it: a BSDF whose colour may come from an image texture.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A partial render: the pass sums of some passes of a pass-independent render, with the
 // identity of the render they belong to, saved to and read from a versioned, checksummed
 // binary file. Partials of the same render with disjoint passes merge exactly (PassSums), so

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A set of pass indices as sorted, disjoint, non-adjacent half-open ranges [first, end): the
 // passes a pass-independent render holds, compact for any split of a render into chunks.
 #pragma once

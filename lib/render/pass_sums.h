@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The state of a pass-independent render: per pixel, the sums over its passes of the pass
 // estimates (radiance, gather radius, photons found), and which passes they hold.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "render/photon_tracer.h"
 
 #include "photon/random.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Photon paths: emitted by lights in proportion to power, scattered with the adjoint BSDFs
 // and Russian roulette. Where a photon may be gathered it is buffered; each batch of photons
 // is then sorted along a Morton curve and deposited in the density estimator in that order,

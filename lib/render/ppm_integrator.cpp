@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "render/ppm_integrator.h"
 
 #include "core/error.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // PPM (Hachisuka, Ogaki and Jensen 2008): the first pass traces the camera paths once,
 // splitting at glass and at coats (both branches, weighted), and every resulting visible
 // point is a slot with its own statistics; later passes only estimate direct light again at

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "render/pppm_integrator.h"
 
 namespace ppm {

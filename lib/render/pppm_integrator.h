@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Probabilistic PPM (Knaus and Zwicker 2011, "Progressive photon mapping: a probabilistic
 // approach"): every pass is SPPM's eye pass with a fresh jittered camera path per pixel, but
 // its gather radius follows a global schedule that depends on the pass index only,

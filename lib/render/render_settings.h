@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The renderer's settings: one table of string keys with types, defaults and checks, so the
 // C API, ppm-render's --set and the docs agree.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Pass orchestration: the integrator's eye pass, the search build, the photon pass and the
 // film's statistics update, with cancellation and timing.
 #include "render/renderer.h"

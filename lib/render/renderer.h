@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The progressive photon mapper: one render_pass() is an eye pass (visible points and their
 // direct light), a photon pass (photons traced from the lights and gathered at the visible
 // points within their radii) and the statistics update that shrinks the radii.

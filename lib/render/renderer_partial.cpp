@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Renderer's partial renders: the pass sums of a pass-independent render with its identity,
 // made, merged, and used as its checkpoints.
 #include "render/renderer.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What the renderer adds to a scene's geometry: the materials that geometries name by id, and
 // the lights: those that are not shapes (point, spot), and the emission that makes a geometry
 // an area light.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "render/sppm_integrator.h"
 
 #include "core/error.h"

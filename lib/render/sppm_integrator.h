@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SPPM (Hachisuka and Jensen 2009): every pass traces a new jittered camera path per pixel,
 // through mirrors and glass (one branch, chosen by Fresnel), to its first non-specular vertex;
 // one slot per pixel, whose statistics (N, R, tau) carry over from pass to pass.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Image textures: any file OpenImageIO reads, held as linear RGB floats and looked up with
 // bilinear filtering and repeat (tiling) wrap.
 //

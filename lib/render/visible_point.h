@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The records the renderer's parts hand each other: what a camera path leaves at a slot, what
 // a photon needs of it, and a photon landing where it may be gathered.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Maps from uniform numbers in [0,1)^2 to the few distributions the renderer samples, with
 // their densities. Same mappings as Mitsuba 3's `warp::` functions, so a sample sequence
 // lands on the same points in both renderers.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A geometry of a scene: the user's data as added, turned into world-space data and an Embree
 // geometry at commit, and the final hit description (point, normals) on request.
 #pragma once

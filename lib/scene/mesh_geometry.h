@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Triangle meshes as native Embree triangles (single precision traversal); a filter function
 // recomputes each candidate hit in double precision and keeps the closest in the RayQuery.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Bicubic Bezier patches as Embree user geometry. Each patch is pre-split into n x n
 // sub-patches (n: the scene setting "patch_presplit"), which are Embree's primitives, so the
 // BVH culls most of a patch before any patch math.

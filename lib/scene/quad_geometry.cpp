@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "scene/quad_geometry.h"
 
 #include "scene/user_geometry.h"

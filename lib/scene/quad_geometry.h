@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Parallelograms as Embree user geometry, intersected in double precision.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What a caller knows about a ray before it is traced, so that a query can skip work. Hints
 // never change an answer: a query that ignored them would return the same hit or the same
 // occlusion. The scene turns them into Embree ray masks and the patch callbacks' skip of the

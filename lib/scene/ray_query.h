@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One ray's state during an Embree traversal. Embree's ray is single precision; the exact
 // double ray and the best double hit so far live here, in an extension of
 // RTCIntersectContext that every callback casts back to.

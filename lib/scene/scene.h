@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A scene: geometries as added, and after commit an Embree BVH over them plus the double
 // precision ray queries.
 #pragma once

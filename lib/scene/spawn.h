@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Rays leaving a surface: the one rule shared by ppm_hit_spawn_ray and the renderer.
 #pragma once
 

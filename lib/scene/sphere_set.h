@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The few spheres a scene tests every ray against outside the BVH (huge ones such as
 // Hachisuka's walls of radius 1e5, or every sphere of a scene of a few spheres; see Scene),
 // stored coordinate by coordinate so that the exact test runs on all of them at once in SIMD

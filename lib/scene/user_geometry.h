@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Glue between Embree user geometry and double-precision hit tests.
 //
 // A kind supplies `bool test(const Data &, unsigned prim, RayQuery &)`, which looks for a hit

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Strict, located reading of a JSON document (through jsoncpp): every value knows its key
 // path and its line and column in the file, so that every error can say exactly where it is
 // ("scene.json:14:9: bsdfs.glass.int_ior: expected a number > 0").

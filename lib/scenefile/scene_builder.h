@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Builds the scene part of a scene file (bsdfs, emitters, shapes) through the C API.
 #pragma once
 

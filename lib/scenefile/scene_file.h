@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A scene file (docs/scene-format.md: libppm's JSON, or Mitsuba 3 XML) read into a committed
 // scene, a camera and render settings. The builder goes through the public C API, so a scene file can express exactly
 // what a program can, and every check of the API also guards files; its messages get the

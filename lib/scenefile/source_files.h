@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The text of the files a scene was read from, and the "path:line:column" of any byte in
 // them. A position is one number across all the files: file k's bytes are numbered from
 // base(k) on, and 0 is no position at all.

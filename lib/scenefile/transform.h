@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Affine transforms of scene files (`to_world`): Mitsuba's operations, composed in the order
 // listed (the first acts first).
 #pragma once

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * Fault injection for file writes: a shared library that wraps the C library's write, flush,
  * sync, close and rename calls and makes them fail like a full or broken disk, so that tests

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Checkpoint writes that fail (disk full, I/O error, at each step of the atomic write) return
  * PPM_ERROR_IO naming the file and the reason, leave the previous checkpoint byte for byte,
  * and leave no temporary file. The faults come from the fault shim linked into this test

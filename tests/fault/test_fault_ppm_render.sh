@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # ppm-render when writing fails: a full disk, I/O errors at each step of the atomic write
 # (write, fsync, close, rename; through the fault shim), a file size limit (ulimit -f) and a
 # read-only folder. Each time for EXR and PNG images and for the checkpoint: exit status 2, a

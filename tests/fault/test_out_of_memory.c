@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Allocation failure: under an address-space limit (RLIMIT_AS, what `ulimit -v` sets), inputs
  * whose arrays do not fit (a 2^28-pixel film, a huge mesh or patch set) give
  * PPM_ERROR_OUT_OF_MEMORY with a message naming the object and its size, and the process

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # ppm-render killed with SIGKILL at reproducible random moments of a checkpointed render:
 # after each kill the image and the checkpoint on disk load, and resuming from that checkpoint
 # (or starting over when none was written yet) gives the image of an uninterrupted render, bit

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The fixed render that the checkpoint target loads checkpoints into, shared with the tool
 // that writes its seed checkpoints: a diffuse floor, a mirror sphere and a point light seen
 // by a 4 x 4 camera.

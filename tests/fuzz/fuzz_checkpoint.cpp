@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Renderer checkpoints through ppm_renderer_load_checkpoint, into a fixed 4 x 4 render (see
 // checkpoint_scene.h) in the mode the input's header names. Each input is loaded twice: as
 // given, which mostly exercises the header and checksum checks, and with its trailing FNV-1a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Wavefront OBJ meshes through ppm_scene_load_obj: a file either loads, commits and renders
 // finitely (or, when it is all degenerate, commit refuses it as documented), or is refused
 // with IO or PARSE naming the file.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // JSON scene files through ppm_scene_file_load. A file either loads (and then its renderer is
 // created and renders one finite pass on a film of at most 64 x 64 pixels) or is refused with
 // PARSE, IO or INVALID_ARGUMENT naming the file. The scene's folder holds small files that scenes may refer to:

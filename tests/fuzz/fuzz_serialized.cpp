@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Mitsuba serialized meshes through ppm_scene_load_serialized, as mesh 0 and as mesh 1 (found
 // through the index at the file's end): each load either succeeds, commits and renders
 // finitely, or is refused with IO or PARSE naming the file.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shared pieces of the fuzz targets: a private temporary folder for loaders that take a path,
 // one context for the whole process, and a tiny render whose pixels must come out finite and
 // non-negative. Every check that fails prints what and aborts, so libFuzzer (and the replay

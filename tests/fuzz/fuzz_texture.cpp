@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Image textures through ppm_scene_set_material_texture (OpenImageIO underneath). The file
 // gets the extension its leading bytes suggest (PNG, OpenEXR, PFM, Radiance HDR, JPEG; .png
 // otherwise), as a user's file would. A texture either loads, and a textured floor and sphere

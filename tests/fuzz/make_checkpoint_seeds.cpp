@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Writes the checkpoint target's seeds into a folder: for each mode, the checkpoint of a
 // renderer that has not run a pass and the one after two passes.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Replays inputs through a fuzz target's LLVMFuzzerTestOneInput without libFuzzer, so that
 // ordinary builds (and their sanitizers) run every committed corpus file and reproducer.
 //

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Compiles and runs every ```c block of a Markdown file against the built libppm, so that the
 # README's C examples cannot drift from the API. Each block must be a whole program; it runs
 # from the repository root (its example paths are relative to it) and must exit 0.

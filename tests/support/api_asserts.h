@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 /* Assertions on ppm_status results for the C tests of the public API. */
 #ifndef PPM_API_ASSERTS_H
 #define PPM_API_ASSERTS_H

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 /* Helpers shared by the cmocka tests. */
 #ifndef PPM_TEST_SUPPORT_H
 #define PPM_TEST_SUPPORT_H

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Option values of ppm-bench's subcommands that CLI11 (tools/common/command_line.h) does not
 // check alone: comma-separated number lists and finite ranges of reals. A value is taken only
 // if all of it parses and lies in range, so "--rays 2k" and "--angles 1e-3,x" are errors.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The renderer's benchmark scenes, built through the public API:
 //  - "smallppm": Hachisuka's smallppm Cornell box (walls are spheres of radius 1e5, a mirror
 //    and a glass sphere, a small diffuse one, a point light of 2500 W/sr), same camera;

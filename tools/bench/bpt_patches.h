@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The bench's own .bpt reader: the tessellation baselines need control points, and tools see
 // only the public C API, which loads patches but does not hand them back.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Runs plot_bench.py (tools/bench/, copied to the data folder: data_files.h) on the CSV when python3 with matplotlib is available.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Turns a failed libppm call into an exception naming the call and libppm's message.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ppm-bench's data files (the teapot of the default --bpt, the chart script) live in the data
 // folder beside the executable, PPM_BENCH_DATA_FROM_EXE from its directory (../share/ppm):
 // installed, that is <prefix>/share/ppm; in the build tree, tools/bench/CMakeLists.txt copies

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Runs one method over every ray set: built and traced on one thread, then on all threads,
 // each trace timed and judged against the reference.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A method's trace judged against the reference's truth for the same rays.
 #pragma once
 

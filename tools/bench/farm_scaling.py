@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Render-farm scaling of libppm.distributed on a Dask LocalCluster, and a model of larger farms.
 
 Measures, on this machine, for one scene:

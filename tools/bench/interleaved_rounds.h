@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Times several built methods on the same ray sets in interleaved rounds, on one thread. On a
 // shared machine the speed of the moment drifts by tens of percent within seconds; timing the
 // methods one after another charges that drift to whichever method ran during it. In rounds,

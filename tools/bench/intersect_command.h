@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `ppm-bench intersect`: builds every requested structure, traces the ray sets, reports.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ppm-bench: benchmarks of libppm. Each subcommand has its own files: the command line in
 // *_args (or render_command), the run in *_command.
 #include "intersect_command.h"

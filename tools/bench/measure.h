@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Timers and memory probes. The machine may be shared, so every timing is kept as both wall
 // and process CPU time; single-threaded runs are judged by the latter.
 #pragma once

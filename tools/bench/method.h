@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What every intersection method of the benchmark implements and reports. The driver
 // (driver.h) builds a method once on one thread and once on all threads, and traces every
 // ray set with each build.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Error against pass count and against time of the renderer's modes on one scene, against an
 independent reference image (e.g. Mitsuba 3's path tracer through tools/validate/to_mitsuba.py).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A minimal parallel loop over plain std::threads: the baselines (Embree triangles, CGAL,
 // Newton) and the reference are driven by the bench's own threads, so their all-thread
 // numbers do not depend on anyone's task scheduler but their own.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Where a patch model is special: shared edges (seams), corners shared by several patches,
 // and edges collapsed to a point (poles). Found by exact comparison of control points, as
 // patches that join without cracks share them bit for bit.

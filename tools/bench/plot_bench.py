@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Speed against accuracy chart of `ppm-bench intersect` results.
 
 Reads the CSV the bench writes (one row per ray set and method) and draws, for the chosen

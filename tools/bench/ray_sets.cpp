@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "ray_sets.h"
 
 #include "patch_topology.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The benchmark's ray sets. Every ray has a unit direction, tnear = 0 and tfar = INFINITY,
 // so t is a distance and comparable across single- and double-precision intersectors. All
 // sets are reproducible from the seed: the generator is the bench's own (rng.h).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Ground truth of the benchmark: every ray of every set is answered by the independent
 // long-double reference intersector of the tests (tools/reference/reference_intersector.*:
 // world-space De Casteljau subdivision and long-double Newton, sharing no code with libppm).

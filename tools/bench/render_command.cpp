@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "render_command.h"
 
 #include "bench_scenes.h"

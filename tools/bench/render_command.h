@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `ppm-bench render`: photon paths per second, eye-pass time and peak memory of the renderer
 // on the benchmark scenes (bench_scenes.h), for each hit-point search structure.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The benchmark's output: per-set tables on stdout, the markdown summary and stability
 // tables, and the CSV the chart script reads.
 #pragma once

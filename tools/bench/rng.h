@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The bench's random numbers: its own generator (splitmix64), not the platform's <random>
 // distributions, so that every ray set is the same on every system for a given seed.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // CGAL's AABB tree baseline, alone in its translation unit: CGAL headers compile slowly.
 #include "measure.h"
 #include "method.h"

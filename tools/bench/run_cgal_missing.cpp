@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Stand-in for run_cgal.cpp when CGAL was not found at configure time.
 #include "method.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Embree 3 triangles: the mesh baseline as a renderer would use it.
 #include "measure.h"
 #include "method.h"

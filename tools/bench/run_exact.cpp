@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libppm's exact intersector, through the public C API only.
 #include "check_status.h"
 #include "measure.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The naive methods of the original course project, kept to show where they fail: every
 // patch whose control-point box the ray crosses is searched by plain Newton iteration on
 // F(u, v, t) = S(u, v) - o - t d = 0 from a few fixed starting points, and the closest root

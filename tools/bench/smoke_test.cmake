@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # ctest driver of ppm_bench_smoke: runs `ppm-bench intersect` on a tiny workload, then checks
 # that it exited 0, printed its tables and wrote the CSV and markdown files.
 # Variables: BENCH (the executable), OUT (a scratch directory).

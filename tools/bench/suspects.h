@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Rays on which libppm's exact intersector disagrees with the reference: a miss, a false hit,
 // or a hit farther from the reference root than the scene tolerance promises. Each is a
 // candidate bug in libppm (or in the reference) and is listed for reproduction.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `ppm-bench targets`: checks the exact intersector's speed and memory targets against the
 // uniform mesh in Embree and CGAL, timing the methods in interleaved rounds.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The output of `ppm-bench targets`: speed tables per ray set, the ratios behind each target
 // with its verdict, and the CSV of every timing.
 #pragma once

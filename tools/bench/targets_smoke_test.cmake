@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # ctest driver of ppm_bench_targets_smoke: runs `ppm-bench targets` on a tiny workload and
 # checks that it exited 0 and printed its tables, verdict lines and CSV; then checks that a
 # bad option value exits 1 with a message naming the option.

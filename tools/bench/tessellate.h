@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Triangle meshes of the patches, made by libppm's ppm_tessellate_patches (uniform grids and
 // adaptive tessellations), in the form the mesh baselines consume.
 #pragma once

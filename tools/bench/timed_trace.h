@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One timed trace of a ray set, shared by `intersect` (driver.cpp) and `targets`.
 #pragma once
 

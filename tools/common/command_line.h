@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The command-line conventions of libppm's tools, on CLI11: `-h`/`--help` prints the usage
 // and `--version` the library version, both with exit status 0; a usage error (an unknown
 // option, a missing or malformed value) prints "TOOL: what" and a pointer to --help and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reference ray / Bezier patch intersection by world-space subdivision and long-double
 // Newton; see reference_intersector.h for what it is and why it is independent of libppm.
 #include "reference_intersector.h"

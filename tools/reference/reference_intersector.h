@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reference for ray / bicubic Bezier patch intersection, in long double: the ground truth of
 // the tests and of ppm-bench (library ppm_reference), never linked into libppm.
 //

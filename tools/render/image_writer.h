@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The image of a render (radiance and extra layers) as ppm-render and ppm-merge write it,
 // through libppm's atomic image writer (ppm_image_write).
 #pragma once

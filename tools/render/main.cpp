@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ppm-render: renders a scene file by progressive photon mapping through libppm's public API,
 // rewriting the image atomically as it converges, with checkpoints to stop and resume.
 #include <ppm/ppm.h>

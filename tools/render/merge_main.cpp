@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ppm-merge: merges the partial renders of one render (ppm-render --pass-range ... --partial)
 // into its image, exactly: the merge of passes 0..N-1 is the image one process rendering N
 // passes would give, bit for bit, whatever the split and order.

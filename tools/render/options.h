@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ppm-render's command line, parsed with CLI11 (tools/common/command_line.h).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The progress bar on stderr: pass, photons per second, elapsed time and ETA, redrawn in
 // place. Silent when stderr is not a terminal (logs get the summary line only) or --quiet.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SIGINT and SIGTERM handled as ordinary code: the handler only writes the signal number to
 // a pipe (async-signal safe), and a watcher thread reading that pipe runs the reaction
 // (cancelling the running pass). Blocking the signals and calling sigwait() is not enough:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ppm-tess: tessellates the Bezier patches of a .bpt or scene file into an OBJ (or PLY) triangle mesh
 // through libppm's public API, and reports how far the mesh lies from the surface.
 #include <ppm/ppm.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ppm-textures: writes the procedural textures the example scenes use (examples/scenes/):
 // blue-and-white porcelain, a checkerboard, wood planks and wall tiles, as 8-bit sRGB PNGs
 // through OpenImageIO. Every image is a pure function of its pixel coordinates, so the

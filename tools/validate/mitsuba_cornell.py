@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Cross-check libppm's renderer against Mitsuba 3's path tracer on a diffuse Cornell box.
 
 Builds the same scene twice - through libppm's C API (ctypes over libppm.so) and as a Mitsuba 3

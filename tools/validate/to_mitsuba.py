@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Translate a libppm JSON scene (docs/scene-format.md) into a Mitsuba 3 scene, render it with
 Mitsuba's path tracer, and compare the result with libppm's render.
 

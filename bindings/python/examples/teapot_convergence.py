@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Renders the Utah teapot in a Cornell-like box with progressive photon mapping and plots
 the image error against render time.
 

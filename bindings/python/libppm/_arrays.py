@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Conversion of user input to the arrays the C API reads, with errors naming the argument.
 
 Anything numpy converts to real numbers is accepted (lists, integer arrays, float32 ...) and

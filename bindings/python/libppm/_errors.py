@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Exceptions raised for the status codes of libppm.
 
 Every failed C call raises the subclass of :class:`Error` for its status, carrying the

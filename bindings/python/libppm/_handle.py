@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """What every handle class shares: close(), the context manager, the closed check."""
 from __future__ import annotations
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Rays and hits as numpy structured arrays laid out exactly as ppm_ray and ppm_hit."""
 from __future__ import annotations
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Type aliases of the package's annotations (for type checkers and help(); no behaviour)."""
 from __future__ import annotations
 

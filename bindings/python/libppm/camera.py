@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The look-at camera (``ppm_camera``)."""
 from __future__ import annotations
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The root object: worker threads, Embree device."""
 from __future__ import annotations
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Render farms on Dask (or Ray): a render's passes in chunks, rendered as tasks anywhere,
 merged exactly into one image.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Partial renders of the pass-independent mode ("pppm"): passes rendered anywhere, merged
 exactly (``ppm_partial_*``; see ppm.h, "Partial renders")."""
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """One-call rendering, in the style of Mitsuba 3's ``mi.render``."""
 from __future__ import annotations
 

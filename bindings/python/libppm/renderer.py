@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Progressive photon mapping (``ppm_renderer_*``)."""
 from __future__ import annotations
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Scenes: geometry, materials, textures, lights; commit; ray queries."""
 from __future__ import annotations
 

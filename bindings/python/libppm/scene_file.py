@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Scene files (docs/scene-format.md): libppm's JSON or Mitsuba 3 XML, ``ppm_scene_file_*``."""
 from __future__ import annotations
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Triangle meshes from Bezier patches (``ppm_tessellate_patches``)."""
 from __future__ import annotations
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Array arguments as the C API reads them: C-contiguous, on the CPU. The Python layer has
 // already converted and shape-checked them; require_size() guards the pointer arithmetic
 // for callers of libppm._core itself.

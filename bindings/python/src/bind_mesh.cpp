@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Tessellation. The mesh's arrays go to numpy without a copy: each array is a read-only view
 // of the mesh's own memory, and its owner capsule holds a reference to the mesh, so the
 // arrays stay valid after close() (the C getters' pointers live as long as any reference).

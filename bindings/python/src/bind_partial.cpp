@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Partial renders of the pass-independent mode, the renderer calls that make and take them,
 // and the image writer.
 #include "arrays.h"

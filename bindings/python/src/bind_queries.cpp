@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Ray queries. Rays and hits cross as raw bytes laid out exactly as ppm_ray and ppm_hit; the
 // Python side views them through numpy structured dtypes built from the layouts exported
 // here (ray_layout / hit_layout), so field offsets come from the compiler, not from a copy.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The progressive photon-mapping renderer.
 #include "arrays.h"
 #include "camera.h"

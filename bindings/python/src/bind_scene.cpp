@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Scene building: geometry, transforms, materials, textures, lights, commit, bounds.
 #include "arrays.h"
 #include "objects.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Scene files (docs/scene-format.md: JSON or Mitsuba 3 XML).
 #include "camera.h"
 #include "objects.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ppm_camera_v2 as it crosses to Python: a tuple (origin, target, up, fov, width, height,
 // aperture_radius, focus_distance, near_clip), which libppm/camera.py turns into libppm.Camera.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Ownership of one libppm handle by one Python object.
 //
 // close() drops the Python object's reference at once; the C library keeps whatever a child

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libppm._core: a thin typed mirror of <ppm/ppm.h>. See objects.h.
 #include "objects.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The handle classes of the extension module libppm._core, shared by the bind_*.cpp files.
 // They mirror ppm.h one to one; argument checking with readable messages, numpy shapes and
 // documentation live in the Python package (libppm/*.py), which is the public API.

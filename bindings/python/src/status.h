@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Turning ppm_status codes into Python exceptions.
 //
 // Every wrapper calls check() right after its C call, on the same thread, so that

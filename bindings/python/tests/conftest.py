@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Shared fixtures and an independent numpy model of bicubic Bezier patches."""
 import pathlib
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Render farms: chunks of passes on Dask (2 worker processes) and Ray, merged into the same
 bits as one process rendering all passes; a killed worker, a stopped and resumed driver and
 foreign partials. Skipped (with the reason) where an engine cannot be imported."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Bad input and misuse give clear Python exceptions, never a crash."""
 import gc
 import threading

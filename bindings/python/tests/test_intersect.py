@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Ray queries against closed-form answers (sphere, quad, triangle) and, on the teapot,
 against an independent numpy model of the patches."""
 import numpy as np

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The one-call helpers: load_file (JSON and Mitsuba XML with parameters), load_dict,
 load_string, render; the exceptions Python code expects; camera defaults."""
 import dataclasses

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Materials, textures, patch uv rectangles and lights through the Python API."""
 import math
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Every ```python block of the repository's README runs, so that its examples cannot drift
 from the package. A block runs in a fresh temporary folder holding links to the repository's
 data folders (the examples name paths relative to the repository root), so files it writes

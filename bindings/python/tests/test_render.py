@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The renderer: a diffuse plane under a point light against the closed form, settings,
 layers, progress, cancellation."""
 import math

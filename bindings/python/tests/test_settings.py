@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Typed settings of scenes and contexts (ppm.h "Typed settings"): ints stay ints, whole floats
 are accepted for integer keys, and wrong types and unknown keys are clear errors."""
 import pytest

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Tessellation: shapes and counts, vertices on the surface, measured deviation."""
 import numpy as np
 import pytest

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The package is typed: it ships its stubs and the py.typed marker, mypy --strict accepts the
 package and the examples, and everything public has a docstring for help()."""
 import inspect
