@@ -703,7 +703,7 @@ typedef struct ppm_image_layer {
  * permission: the message names the folder and the reason). */
 PPM_API ppm_status ppm_image_check_path(const char *path);
 /* Writes an image atomically (encoded in memory, written beside `path`, synced and renamed):
- * .exr, .hdr and .pfm get linear float RGB radiance as given (EXR also the `layers`, zip
+ * .exr and .hdr get linear float RGB radiance as given (EXR also the `layers`, zip
  * compressed); other formats (.png, .jpg, .tif, ...) 8-bit sRGB of the radiance scaled by
  * 2^exposure and clamped to [0, 1]. `radiance` is 3 floats per pixel, rows from the top.
  * Errors: INVALID_ARGUMENT (NULL, unknown format, size not in 1 .. 2^28 pixels, exposure not in

@@ -125,7 +125,7 @@ class Partial(Handle):
 def write_image(path: PathLike, image: ArrayLike,
                 layers: Optional[Mapping[str, ArrayLike]] = None, exposure: float = 0.0) -> None:
     """Writes a float ``(H, W, 3)`` linear-radiance image atomically through libppm's writer
-    (the one ppm-render uses): ``.exr``/``.hdr``/``.pfm`` linear float (EXR also ``layers``, a
+    (the one ppm-render uses): ``.exr`` and ``.hdr`` linear float (EXR also ``layers``, a
     dict of name to ``(H, W)`` arrays), other formats (``.png``, ``.jpg``, ...) 8-bit sRGB of
     the radiance scaled by ``2**exposure``."""
     rgb = np.ascontiguousarray(image, dtype=np.float32)
@@ -144,5 +144,8 @@ def write_image(path: PathLike, image: ArrayLike,
 
 
 def check_image_path(path: PathLike) -> None:
-    """Raises :class:`libppm.InvalidArgumentError` unless libppm can write ``path``'s format."""
+    """Checks that :func:`write_image` could write ``path``, before a long render finds out:
+    :class:`libppm.InvalidArgumentError` for a format libppm does not write (by the
+    extension), :class:`libppm.FileError` (an ``OSError``) for a folder that does not exist or
+    may not be written into."""
     _core.image_check_path(os.fspath(path))
