@@ -4,16 +4,19 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from typing import Any, FrozenSet, Sequence, Tuple
+from typing import Any, FrozenSet, Optional, Sequence, Tuple
 
 from ._arrays import vector
 
 Vec3 = Tuple[float, float, float]
 
+#: A crop window ``(x0, y0, x1, y1)`` in pixels: columns x0 .. x1-1, rows y0 .. y1-1.
+Crop = Tuple[int, int, int, int]
+
 # The camera as libppm._core takes and returns it: origin, target, up, fov, width, height,
-# aperture_radius, focus_distance, near_clip.
+# aperture_radius, focus_distance, near_clip, crop ((0, 0, 0, 0): none).
 _CoreCamera = Tuple[Sequence[float], Sequence[float], Sequence[float], float, int, int, float,
-                    float, float]
+                    float, float, Sequence[int]]
 
 
 @dataclass
@@ -23,7 +26,9 @@ class Camera:
     ``fov`` is the full angle in degrees along the image's x axis; image x grows to the
     right, y down; pixels are square. ``aperture_radius`` 0 is a pinhole; a thin lens
     (> 0) focuses at ``focus_distance`` along the view axis. Rays start ``near_clip``
-    along the view axis (0 = at the lens).
+    along the view axis (0 = at the lens). ``crop`` ``(x0, y0, x1, y1)`` renders only that
+    window of the ``width`` x ``height`` image (columns x0 .. x1-1, rows y0 .. y1-1),
+    projected as in the whole image: the image rendered is x1 - x0 by y1 - y0 pixels.
 
     The defaults are those of a scene file without a ``sensor`` and of Mitsuba 3: at the
     origin looking along +z with +y up, the 39.6 degree field of view of a 50 mm lens on
@@ -39,6 +44,7 @@ class Camera:
     aperture_radius: float = 0.0
     focus_distance: float = 0.0
     near_clip: float = 0.01
+    crop: Optional[Crop] = None
 
     @staticmethod
     def field_names() -> FrozenSet[str]:
@@ -57,12 +63,21 @@ class Camera:
             if int(value) != value or not 0 <= value <= 0xFFFFFFFF:
                 raise ValueError(f"camera {name}: expected a positive integer, got {value!r}")
             size.append(int(value))
+        crop = (0, 0, 0, 0)
+        if self.crop is not None:
+            values = tuple(self.crop)
+            if len(values) != 4 or any(int(v) != v or not 0 <= v <= 0xFFFFFFFF for v in values):
+                raise ValueError(f"camera crop: expected (x0, y0, x1, y1) in pixels, got {self.crop!r}")
+            crop = (int(values[0]), int(values[1]), int(values[2]), int(values[3]))
         return (vector(self.origin, "camera origin"), vector(self.target, "camera target"),
                 vector(self.up, "camera up"), float(self.fov), size[0], size[1],
-                float(self.aperture_radius), float(self.focus_distance), float(self.near_clip))
+                float(self.aperture_radius), float(self.focus_distance), float(self.near_clip),
+                crop)
 
     @classmethod
     def _from_tuple(cls, t: _CoreCamera) -> "Camera":
         """The camera of a tuple from libppm._core."""
+        x0, y0, x1, y1 = (int(v) for v in t[9])
         return cls((t[0][0], t[0][1], t[0][2]), (t[1][0], t[1][1], t[1][2]),
-                   (t[2][0], t[2][1], t[2][2]), *t[3:])
+                   (t[2][0], t[2][1], t[2][2]), t[3], t[4], t[5], t[6], t[7], t[8],
+                   None if (x0, y0, x1, y1) == (0, 0, 0, 0) else (x0, y0, x1, y1))

@@ -21,7 +21,8 @@ def render(scene: Union[SceneFile, PathLike], passes: Optional[int] = None,
     the file's ``integrator.passes``, else 16). ``time``: a budget in seconds; the render
     stops after the pass that crosses it (with ``time`` alone, passes are unlimited).
     ``seed``: the random seed. Keyword ``settings`` override the file's integrator settings
-    (``photons_per_pass=100_000``, ``mode="pppm"``, ...).
+    (``photons_per_pass=100_000``, ``mode="pppm"``, ...) and its camera's fields (``width=64,
+    height=48``; ``crop=(x0, y0, x1, y1)`` renders only that window of the image).
 
     >>> image = libppm.render("examples/scenes/teapot-cornell.json", passes=8)
     >>> libppm.write_image("teapot.exr", image)

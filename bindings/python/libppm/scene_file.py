@@ -49,9 +49,24 @@ class SceneFile(Handle):
         self.scene = Scene._adopt(self._core_object.get_scene(), self.context)
         self.camera = Camera._from_tuple(self._core_object.get_camera())
 
-    def create_renderer(self, **settings: Any) -> Renderer:
-        """A :class:`Renderer` with the file's integrator settings, then ``settings``."""
-        renderer = Renderer._adopt(self._core_object.create_renderer(), self.scene, self.camera)
+    def create_renderer(self, camera: Optional[Camera] = None, **settings: Any) -> Renderer:
+        """A :class:`Renderer` with the file's integrator settings, then ``settings``.
+
+        It sees the scene through ``camera`` (default: the file's), whose fields may also be
+        given as keywords that change the file's camera: ``create_renderer(width=64,
+        height=48)`` renders at another size (radii given in pixels follow), ``crop=(x0, y0,
+        x1, y1)`` only a window of the image.
+        """
+        fields = {k: settings.pop(k) for k in list(settings) if k in Camera.field_names()}
+        if camera is not None and not isinstance(camera, Camera):
+            raise TypeError(f"camera: expected libppm.Camera, got {type(camera).__name__}")
+        if camera is None and not fields:
+            core = self._core_object.create_renderer()
+            view = self.camera
+        else:
+            view = (camera or self.camera).replace(**fields)
+            core = self._core_object.create_renderer(view._as_tuple())
+        renderer = Renderer._adopt(core, self.scene, view)
         try:
             renderer.set(**settings)
         except BaseException:

@@ -67,11 +67,20 @@ void bind_scene_file(nb::module_ &m) {
         check(ppm_scene_file_get_camera_v2(f.get(), &camera));
         return from_camera(camera);
     });
-    cls.def("create_renderer", [](SceneFile &f) {
-        ppm_renderer renderer = nullptr;
-        check(ppm_scene_file_create_renderer(f.get(), &renderer));
-        return new Renderer(renderer, "Renderer");
-    });
+    // With a camera: the file's settings seen through it (another size, a crop window).
+    cls.def(
+        "create_renderer",
+        [](SceneFile &f, std::optional<CameraTuple> camera) {
+            ppm_renderer renderer = nullptr;
+            if (camera) {
+                const ppm_camera_v2 c = to_camera(*camera);
+                check(ppm_scene_file_create_renderer_v2(f.get(), &c, &renderer));
+            } else {
+                check(ppm_scene_file_create_renderer(f.get(), &renderer));
+            }
+            return new Renderer(renderer, "Renderer");
+        },
+        nb::arg("camera") = nb::none());
     cls.def("get_int", [](SceneFile &f, const std::string &key) {
         int64_t value = 0;
         check(ppm_scene_file_get_int(f.get(), key.c_str(), &value));

@@ -16,7 +16,10 @@
 namespace ppm_py {
 
 using Vec3 = std::array<double, 3>;
-using CameraTuple = std::tuple<Vec3, Vec3, Vec3, double, uint32_t, uint32_t, double, double, double>;
+// origin, target, up, fov, width, height, aperture_radius, focus_distance, near_clip, crop
+// (x0, y0, x1, y1; all 0: none).
+using Crop = std::array<uint32_t, 4>;
+using CameraTuple = std::tuple<Vec3, Vec3, Vec3, double, uint32_t, uint32_t, double, double, double, Crop>;
 
 inline ppm_camera_v2 to_camera(const CameraTuple &t) {
     ppm_camera_v2 c;
@@ -30,6 +33,11 @@ inline ppm_camera_v2 to_camera(const CameraTuple &t) {
     c.aperture_radius = std::get<6>(t);
     c.focus_distance = std::get<7>(t);
     c.near_clip = std::get<8>(t);
+    const Crop &crop = std::get<9>(t);
+    c.crop_x0 = crop[0];
+    c.crop_y0 = crop[1];
+    c.crop_x1 = crop[2];
+    c.crop_y1 = crop[3];
     return c;
 }
 
@@ -42,7 +50,8 @@ inline CameraTuple from_camera(const ppm_camera_v2 &c) {
             c.height,
             c.aperture_radius,
             c.focus_distance,
-            c.near_clip};
+            c.near_clip,
+            Crop{c.crop_x0, c.crop_y0, c.crop_x1, c.crop_y1}};
 }
 
 } // namespace ppm_py

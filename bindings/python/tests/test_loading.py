@@ -13,6 +13,8 @@ import libppm
 
 from conftest import REPO, TEAPOT
 
+SMALL_BOX = REPO / "tests" / "data" / "scenes" / "small_box.json"
+
 BOX_XML = """<scene version="3.0.0">
   <default name="res" value="20"/>
   <default name="spp" value="3"/>
@@ -142,6 +144,9 @@ def test_camera_defaults_are_those_of_a_scene_file_without_sensor(tmp_path):
         from_file = f.camera
     default = libppm.Camera()
     for field in dataclasses.fields(libppm.Camera):
+        if field.name == "crop":  # no crop window: None
+            assert from_file.crop is None and default.crop is None
+            continue
         np.testing.assert_allclose(getattr(from_file, field.name), getattr(default, field.name),
                                    err_msg=field.name)
 
@@ -157,3 +162,27 @@ def test_warnings_can_be_errors_without_breaking_the_load(box_xml):
         with libppm.load_file(path, lenient=True) as f:
             assert f.camera.width == 20
     assert os.path.exists(path)
+
+
+def test_size_and_crop_of_a_scene_file(tmp_path):
+    """Keywords of the camera change the file's camera: another size, or a crop window whose
+    pixels converge to those of the whole image at the same place."""
+    scene = libppm.load_file(SMALL_BOX)
+    with scene.create_renderer(width=24, height=18, photons_per_pass=2000) as whole:
+        assert (whole.width, whole.height) == (24, 18)
+        assert whole.camera.width == 24 and whole.camera.crop is None
+        full = whole.render(32)
+    assert full.shape == (18, 24, 3)
+    cropped = libppm.render(scene, passes=32, width=24, height=18, crop=(6, 3, 18, 12),
+                            photons_per_pass=2000)
+    assert cropped.shape == (9, 12, 3)
+    window = full[3:12, 6:18]
+    # Same place: the difference is noise; one pixel to the side it is the image's structure.
+    same = np.abs(cropped - window).mean()
+    shifted = np.abs(cropped - full[3:12, 7:19]).mean()
+    assert same < 0.5 * shifted
+    with pytest.raises(libppm.InvalidArgumentError, match="crop window"):
+        scene.create_renderer(width=24, height=18, crop=(0, 0, 25, 5))
+    with pytest.raises(ValueError, match="camera crop"):
+        scene.create_renderer(crop=(0, 0, 5))
+    scene.close()
