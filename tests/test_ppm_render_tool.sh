@@ -52,7 +52,7 @@ expect 1 "--frobnicate" -- "$scene" --frobnicate
 expect 1 "--passes: Value -3 not in range" -- "$scene" --passes -3
 expect 1 "--passes: Value many" -- "$scene" --passes many
 expect 1 "--set needs KEY=VALUE" -- "$scene" --set alpha
-expect 1 "unknown layer 'depth'" -- "$scene" --layers depth
+expect 1 "--layers: depth not in {radius,photons}" -- "$scene" --layers depth
 expect 1 "--size needs WIDTHxHEIGHT" -- "$scene" --size 64
 expect 1 "--size needs whole numbers" -- "$scene" --size 64x0
 expect 1 "--crop 8,4,8,9 is empty" -- "$scene" --crop 8,4,8,9

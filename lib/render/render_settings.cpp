@@ -11,15 +11,21 @@ namespace ppm {
 
 namespace {
 
-const char *const kKeys = "mode, photons_per_pass, alpha, initial_radius, initial_radius_pixels, max_depth, seed, "
-                          "hit_point_search, direct_lighting";
+// The settings, in the order messages list them, with the article and type they take.
+struct KnownSetting {
+    const char *name;
+    const char *type;
+};
+constexpr KnownSetting kSettings[] = {
+    {"mode", "a string"},           {"photons_per_pass", "an integer"},    {"alpha", "a number"},
+    {"initial_radius", "a number"}, {"initial_radius_pixels", "a number"}, {"max_depth", "an integer"},
+    {"seed", "an integer"},         {"hit_point_search", "a string"},      {"direct_lighting", "an integer"},
+};
 
 // The type of a known key with its article, or nullptr.
 const char *type_of(const std::string &key) {
-    if (key == "mode" || key == "hit_point_search") return "a string";
-    if (key == "alpha" || key == "initial_radius" || key == "initial_radius_pixels") return "a number";
-    if (key == "photons_per_pass" || key == "max_depth" || key == "seed" || key == "direct_lighting")
-        return "an integer";
+    for (const KnownSetting &setting : kSettings)
+        if (key == setting.name) return setting.type;
     return nullptr;
 }
 
@@ -28,11 +34,14 @@ const char *type_of(const std::string &key) {
     if (const char *actual = type_of(key))
         invalid_argument("unknown " + std::string(type) + " render setting '" + key + "': '" + key + "' is " + actual +
                          " setting");
-    const std::vector<std::string> keys = {"mode",           "photons_per_pass",      "alpha",
-                                           "initial_radius", "initial_radius_pixels", "max_depth",
-                                           "seed",           "hit_point_search",      "direct_lighting"};
-    invalid_argument("unknown " + std::string(type) + " render setting '" + key + "'" + did_you_mean(key, keys) +
-                     " (settings: " + kKeys + ")");
+    std::vector<std::string> names;
+    std::string list;
+    for (const KnownSetting &setting : kSettings) {
+        names.emplace_back(setting.name);
+        list += (list.empty() ? "" : ", ") + names.back();
+    }
+    invalid_argument("unknown " + std::string(type) + " render setting '" + key + "'" + did_you_mean(key, names) +
+                     " (settings: " + list + ")");
 }
 
 void require_not_started(const std::string &key, bool started) {

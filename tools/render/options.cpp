@@ -25,7 +25,7 @@ const char *const footer = "SIGINT or SIGTERM (Ctrl-C) abandons the running pass
 // The raw text of the options whose syntax CLI11 does not know; checked after parsing.
 struct RawOptions {
     std::vector<std::string> defines, settings;
-    std::string layers, size, crop, pass_range;
+    std::string size, crop, pass_range;
 };
 
 // "KEY=VALUE" into its two non-empty halves.
@@ -77,10 +77,13 @@ void add_options(CLI::App &app, Options &o, RawOptions &raw) {
         ->check(unlisted(CLI::Range(-100.0, 100.0)))
         ->type_name("EV")
         ->group(output);
-    app.add_option("--layers", raw.layers,
+    app.add_option("--layers", o.layers,
                    "extra EXR channels, comma separated: radius (gather\n"
                    "radius in scene units), photons (the photon count N)")
+        ->delimiter(',')
+        ->check(CLI::IsMember({"radius", "photons"}))
         ->type_name("LIST")
+        ->allow_extra_args(false)
         ->group(output);
     app.add_option("--write-interval", o.write_interval,
                    "rewrite the images at most every S seconds (default 1;\n"
@@ -186,12 +189,6 @@ void finish(Options &o, const RawOptions &raw, bool checkpoint_given) {
     o.checkpoint_given = checkpoint_given;
     for (const std::string &define : raw.defines) o.defines.push_back(key_value(define, "-D", "NAME=VALUE"));
     for (const std::string &setting : raw.settings) o.settings.push_back(key_value(setting, "--set", "KEY=VALUE"));
-    if (!raw.layers.empty())
-        for (const std::string &layer : split(raw.layers, ',')) {
-            if (layer != "radius" && layer != "photons")
-                throw UsageError("--layers: unknown layer '" + layer + "' (layers: radius, photons)");
-            o.layers.push_back(layer);
-        }
     if (!raw.size.empty()) {
         const std::vector<std::string> wh = split(raw.size, 'x');
         if (wh.size() != 2) throw UsageError("--size needs WIDTHxHEIGHT such as 640x480, not '" + raw.size + "'");
