@@ -279,6 +279,53 @@ static void test_scene_file_camera_v2(void **state) {
     ppm_scene_file_release(file);
 }
 
+/* A scene file's renderer through another camera: its size, the file's settings, the
+ * file's camera for NULL, and the errors of ppm_renderer_create_v2. */
+static void test_scene_file_renderer_with_another_camera(void **state) {
+    fixture *f = *state;
+    ppm_scene_file file = NULL;
+    assert_ppm_ok(ppm_scene_file_load(f->context, small_box, &file));
+    ppm_camera_v2 camera;
+    ppm_camera_v2_init(&camera);
+    assert_ppm_ok(ppm_scene_file_get_camera_v2(file, &camera));
+    ppm_renderer r = NULL, base = NULL;
+    int64_t width = 0, height = 0, photons = 0, base_photons = 0;
+
+    assert_ppm_ok(ppm_scene_file_create_renderer(file, &base));
+    assert_ppm_ok(ppm_renderer_get_int(base, "photons_per_pass", &base_photons));
+    camera.width = 20;
+    camera.height = 10;
+    camera.crop_x0 = 5, camera.crop_y0 = 2, camera.crop_x1 = 15, camera.crop_y1 = 6;
+    assert_ppm_ok(ppm_scene_file_create_renderer_v2(file, &camera, &r));
+    assert_ppm_ok(ppm_renderer_get_int(r, "width", &width));
+    assert_ppm_ok(ppm_renderer_get_int(r, "height", &height));
+    assert_ppm_ok(ppm_renderer_get_int(r, "photons_per_pass", &photons));
+    assert_int_equal(width, 10);
+    assert_int_equal(height, 4);
+    assert_int_equal(photons, base_photons); /* the file's integrator settings */
+    ppm_renderer_release(r);
+
+    r = NULL;
+    assert_ppm_ok(ppm_scene_file_create_renderer_v2(file, NULL, &r)); /* the file's camera */
+    assert_ppm_ok(ppm_renderer_get_int(r, "width", &width));
+    assert_int_equal(width, 64);
+    ppm_renderer_release(r);
+    ppm_renderer_release(base);
+
+    r = NULL;
+    camera.crop_x1 = 21;
+    assert_ppm_error(ppm_scene_file_create_renderer_v2(file, &camera, &r), PPM_ERROR_INVALID_ARGUMENT, "crop window");
+    assert_null(r);
+    camera.crop_x1 = 15;
+    camera.size = 3;
+    assert_ppm_error(ppm_scene_file_create_renderer_v2(file, &camera, &r), PPM_ERROR_INVALID_ARGUMENT, "camera->size");
+    camera.size = sizeof camera;
+    assert_ppm_error(ppm_scene_file_create_renderer_v2(file, &camera, NULL), PPM_ERROR_INVALID_ARGUMENT,
+                     "out_renderer");
+    assert_ppm_error(ppm_scene_file_create_renderer_v2(NULL, &camera, &r), PPM_ERROR_INVALID_ARGUMENT, "file");
+    ppm_scene_file_release(file);
+}
+
 /* Many passes of a pinhole camera, no photons needed (a convex sphere under a point light
  * has direct light only): the radiance of a w x h image, malloc'ed. */
 static float *render_pinhole(ppm_scene scene, const ppm_camera_v2 *camera, int w, int h) {
@@ -358,6 +405,7 @@ int main(void) {
         TEST(test_null_arguments),
         TEST(test_uncommitted_scene),
         TEST(test_scene_file_camera_v2),
+        TEST(test_scene_file_renderer_with_another_camera),
         TEST(test_crop_window_renders_part_of_the_image),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -797,8 +797,10 @@ PPM_API ppm_status ppm_scene_file_get_camera_v2(ppm_scene_file file, ppm_camera_
 PPM_API ppm_status ppm_scene_file_create_renderer(ppm_scene_file file, ppm_renderer *out_renderer);
 /* The same seen through `camera` instead of the file's (NULL: the file's): typically the
  * file's camera (ppm_scene_file_get_camera_v2) with another image size or a crop window.
- * Settings the file gives in pixels (initial_radius_pixels) follow the new pixel size.
- * Errors: as ppm_renderer_create_v2. */
+ * Settings the file gives in pixels (initial_radius_pixels) follow the new pixel size. The
+ * caller owns the one reference returned; thread safe like the other calls on a loaded file.
+ * Errors: INVALID_ARGUMENT (NULL file or out_renderer), and those of ppm_renderer_create_v2
+ * (a bad camera field or size, naming it). */
 PPM_API ppm_status ppm_scene_file_create_renderer_v2(ppm_scene_file file, const ppm_camera_v2 *camera,
                                                      ppm_renderer *out_renderer);
 /* Read-only values of the file (typed settings: see the top of this header): "passes" (int,
