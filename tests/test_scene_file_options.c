@@ -281,6 +281,31 @@ static void test_bad_options_are_refused(void **state) {
     assert_int_equal(ppm_scene_file_load_v2(f->context, path, NULL, NULL), PPM_ERROR_INVALID_ARGUMENT);
 }
 
+/* Mesh files named in an XML scene are found beside the file that names them, whatever the
+ * working folder (Mitsuba resolves them so). */
+static void test_xml_file_names_are_relative_to_the_scene(void **state) {
+    fixture *f = *state;
+    write_file(f, "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    write_file(f, "part.xml",
+               "<scene version=\"3.0.0\"><shape type=\"obj\"><string name=\"filename\" value=\"tri.obj\"/>"
+               "</shape></scene>\n");
+    const char *path = write_file(f, "scene.xml",
+                                  "<scene version=\"3.0.0\">\n"
+                                  "  <include filename=\"part.xml\"/>\n"
+                                  "  <shape type=\"obj\"><string name=\"filename\" value=\"tri.obj\"/></shape>\n"
+                                  "</scene>\n");
+    assert_true(path[0] == '/'); /* an absolute path: the working folder is not the scene's */
+    ppm_scene_file file = NULL;
+    assert_int_equal(ppm_scene_file_load(f->context, path, &file), PPM_OK);
+    ppm_scene scene = NULL;
+    assert_int_equal(ppm_scene_file_get_scene(file, &scene), PPM_OK);
+    size_t count = 0;
+    assert_int_equal(ppm_scene_get_geometry_count(scene, &count), PPM_OK);
+    assert_int_equal(count, 2);
+    ppm_scene_release(scene);
+    ppm_scene_file_release(file);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_xml_is_chosen_by_extension_or_content, setup, teardown),
@@ -290,6 +315,7 @@ int main(void) {
         cmocka_unit_test_setup_teardown(test_scene_from_text_resolves_names_against_the_folder, setup, teardown),
         cmocka_unit_test_setup_teardown(test_bad_options_are_refused, setup, teardown),
         cmocka_unit_test_setup_teardown(test_misspellings_get_a_suggestion, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_xml_file_names_are_relative_to_the_scene, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

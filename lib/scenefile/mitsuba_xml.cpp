@@ -12,6 +12,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <memory>
 #include <set>
 
@@ -95,6 +96,7 @@ private:
         pugi::xml_node node;
         const Source *source;
     };
+    std::string main_folder_; // of the scene file itself
 
     // ---- locations ----------------------------------------------------------------------
 
@@ -157,6 +159,7 @@ private:
         source->folder = given_folder                 ? *given_folder
                          : slash == std::string::npos ? std::string()
                                                       : path.substr(0, slash + 1);
+        if (!included_from) main_folder_ = source->folder;
         const pugi::xml_parse_result parsed =
             source->document->load_buffer(text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
         if (!parsed)
@@ -211,6 +214,16 @@ private:
 
     std::string resolve(const Source &source, const std::string &name) const {
         return name.empty() || name[0] == '/' ? name : source.folder + name;
+    }
+
+    // A file a property names (a mesh, a texture): relative to the file that names it, or, as
+    // Mitsuba's file resolver also finds it, to the main scene file (older scenes split into
+    // included fragments name their meshes relative to the main file).
+    std::string resolve_data_file(const Source &source, const std::string &name) const {
+        const std::string beside = resolve(source, name);
+        if (name.empty() || name[0] == '/' || std::ifstream(beside).good()) return beside;
+        const std::string from_main = main_folder_ + name;
+        return std::ifstream(from_main).good() ? from_main : beside;
     }
 
     // ---- attributes and parameters ------------------------------------------------------
@@ -474,7 +487,11 @@ private:
         if (kind == "point" || kind == "vector") return vector3(node, source);
         if (kind == "rgb" || kind == "spectrum") return colour(node, source, in_emitter);
         const std::string text = substitute(node, source, "value");
-        if (kind == "string") return located(Json::Value(text), node, source);
+        if (kind == "string") {
+            if (std::string(node.attribute("name").value()) == "filename")
+                return located(Json::Value(resolve_data_file(source, text)), node, source);
+            return located(Json::Value(text), node, source);
+        }
         if (kind == "boolean") {
             if (text != "true" && text != "false") error(node, source, "'" + text + "' is not true or false");
             return located(Json::Value(text == "true"), node, source);

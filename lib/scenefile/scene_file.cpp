@@ -68,7 +68,10 @@ ppm_camera read_sensor(const JsonNode *node) {
             camera.aperture_radius = node->at("aperture_radius").positive();
             camera.focus_distance = node->at("focus_distance").positive();
         } else {
-            node->allow_only({"type", "fov", "to_world", "near_clip", "film"});
+            // Mitsuba's perspective sensor takes a focus distance too (all its projective
+            // cameras do); a pinhole has everything in focus, so it changes nothing.
+            node->allow_only({"type", "fov", "to_world", "near_clip", "film", "focus_distance"});
+            if (node->has("focus_distance")) node->at("focus_distance").positive();
         }
         if (node->has("fov")) camera.fov = node->at("fov").number_in(0, 180, true, true);
         if (node->has("near_clip")) camera.near_clip = node->at("near_clip").non_negative();

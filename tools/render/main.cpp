@@ -62,8 +62,6 @@ void load_scene_file(ppm_context context, const Options &options, ppm_scene_file
     load_options.define_count = names.size();
     load_options.lenient = options.lenient ? 1 : 0;
     const ppm_status status = ppm_scene_file_load_v2(context, options.scene.c_str(), &load_options, out_file);
-    if (status == PPM_ERROR_INVALID_ARGUMENT && !options.defines.empty())
-        throw ApiError{"-D: " + std::string(ppm_last_error_message())};
     check(status);
 }
 
