@@ -54,7 +54,7 @@ const std::set<std::string> &renderable(const std::string &tag) {
     static const std::map<std::string, std::set<std::string>> types = {
         {"bsdf", {"diffuse", "conductor", "dielectric", "plastic", "twosided"}},
         {"emitter", {"point", "spot", "area"}},
-        {"shape", {"sphere", "rectangle", "cube", "obj", "ply", "serialized", "bezier"}},
+        {"shape", {"sphere", "rectangle", "disk", "cylinder", "cube", "obj", "ply", "serialized", "bezier"}},
         {"texture", {"bitmap"}}};
     static const std::set<std::string> none;
     const auto found = types.find(tag);
