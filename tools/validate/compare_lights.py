@@ -15,6 +15,12 @@ Not run by CI (Mitsuba is a big download).
       --out /tmp/compare_lights [--size 96] [--spp 256] [--passes 64] [--only disk]
 
 Needs Mitsuba 3 (`import mitsuba`, variant scalar_rgb) in the running Python.
+
+Measured (Mitsuba 3.9.1 scalar_rgb, --size 96 --spp 1024 --passes 256, 3.5 minutes on 2 cores),
+ours / Mitsuba per channel mean:
+  cylinder  0.9987 0.9983 0.9984
+  disk      1.0000 0.9999 1.0000
+  mesh      1.0003 1.0003 1.0005
 """
 import argparse
 import math
