@@ -15,6 +15,7 @@
 #include "api/api_support.h"
 #include "geometry/mesh_data.h"
 #include "render/render_scene.h"
+#include "scene/mesh_geometry.h"
 
 #include <ppm/ppm.h>
 
@@ -117,6 +118,8 @@ void square_mesh_matches_quad_light(void **) {
         assert_int_equal(rs->lights().size(), 1);
         const Light &light = rs->lights()[0];
         assert_true(light.type() == Light::Type::Mesh);
+        // The light samples the geometry's own world-space data, not a copy.
+        assert_true(light.mesh_data() == &static_cast<const MeshGeometry &>(f.scene->geometry(id)).world());
         assert_close(light.area(), 1.0, 1e-12);
         assert_close(light.power().mean(), quad_power, 1e-12);
         assert_close(irradiance(light, p, up, 200000), expected, 0.01 * expected);

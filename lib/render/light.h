@@ -68,6 +68,8 @@ public:
     double area() const { return area_; }
     // Index of the triangle a uniform number picks (mesh lights; probability area / total).
     size_t pick_triangle(double u) const;
+    // The mesh a mesh light samples (the geometry's own world-space data), else null.
+    const MeshData *mesh_data() const { return table_ ? table_->mesh.get() : nullptr; }
 
     Type type() const { return type_; }
     Rgb power() const { return power_; }
