@@ -264,6 +264,19 @@ static void test_area_lights_on_disks_cylinders_and_meshes(void **state) {
                "</scene>\n");
     check_light_scene(f, xml, 3);
 
+    /* A mirroring to_world keeps Mitsuba's disk normal, the inverse transpose's +z. */
+    write_text(f->path, "{\"shapes\": [{\"type\": \"disk\", \"to_world\": {\"scale\": [-1, 1, 1]}}]}");
+    ppm_scene_file file = NULL;
+    assert_int_equal(ppm_scene_file_load(f->context, f->path, &file), PPM_OK);
+    ppm_scene scene = NULL;
+    assert_int_equal(ppm_scene_file_get_scene(file, &scene), PPM_OK);
+    ppm_ray down = {{0.2, 0.1, 3}, 0, {0, 0, -1}, INFINITY};
+    ppm_hit hit;
+    assert_int_equal(ppm_scene_intersect(scene, &down, 1, &hit), PPM_OK);
+    assert_close(hit.ng[2], 1, 1e-12);
+    ppm_scene_release(scene);
+    ppm_scene_file_release(file);
+
     EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"cylinder\", \"p0\": [1, 1, 1], \"p1\": [1, 1, 1]}]}", PPM_ERROR_PARSE,
                  "p0 and p1");
     EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"cylinder\", \"radius\": 0}]}", PPM_ERROR_PARSE, "radius");

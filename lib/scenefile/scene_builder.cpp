@@ -183,6 +183,7 @@ void SceneBuilder::add_shape(const JsonNode &shape) {
     const Affine to_world = shape.has("to_world") ? parse_transform(shape.at("to_world")) : Affine{};
     // Transforms that the shape cannot take in its own parameters go to the geometry.
     bool transform_geometry = !is_identity(to_world);
+    bool mirrored_normal = false; // the shape's normal must be flipped to be Mitsuba's
     std::uint32_t geom = 0;
 
     if (type == "sphere") {
@@ -211,6 +212,9 @@ void SceneBuilder::add_shape(const JsonNode &shape) {
                                     v = to_array(to_world.vector({0, 1, 0}));
         check(shape, ppm_scene_add_disk(scene_, c.data(), u.data(), v.data(), &geom));
         transform_geometry = false;
+        // Mitsuba's normal is to_world's inverse transpose applied to +z, which is
+        // (x axis) x (y axis) / det: reversed by a mirroring to_world.
+        mirrored_normal = to_world.determinant() < 0;
     } else if (type == "cylinder") {
         // Mitsuba's cylinder: p0 (0, 0, 0), p1 (0, 0, 1), radius 1, then to_world; the tube
         // must stay circular in the world (to_world may stretch along the axis only).
@@ -297,8 +301,8 @@ void SceneBuilder::add_shape(const JsonNode &shape) {
         const std::array<double, 16> matrix = matrix16(to_world);
         check(shape.at("to_world"), ppm_scene_set_geometry_transform(scene_, geom, matrix.data()));
     }
-    if (shape.has("flip_normals") && shape.at("flip_normals").boolean())
-        check(shape.at("flip_normals"), ppm_scene_set_geometry_flip_normals(scene_, geom, 1));
+    const bool flip = shape.has("flip_normals") && shape.at("flip_normals").boolean();
+    if (flip != mirrored_normal) check(shape, ppm_scene_set_geometry_flip_normals(scene_, geom, 1));
     check(shape, ppm_scene_set_geometry_material(scene_, geom, shape_material(shape)));
     if (shape.has("emitter")) {
         const JsonNode emitter = shape.at("emitter");
