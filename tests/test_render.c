@@ -6,6 +6,8 @@
  *    shadow rays and by photons;
  *  - a diffuse plane under a point light: L = rho / pi * I cos(theta) / d^2, by shadow rays
  *    (exact up to pixel jitter) and by photons, whose error falls as passes grow;
+ *  - a disk light, as a disk and as a triangle mesh: the coaxial disk's view factor, by shadow
+ *    rays and by photons;
  *  - a spot light: full intensity inside the beam, none beyond the cutoff; photons and
  *    shadow rays agree when two lights share the power (light selection probabilities);
  *  - the same seed gives the same image for 1 and 2 threads, another seed another image;
@@ -250,6 +252,94 @@ static void point_light_on_plane_by_photons_converges_pppm(void **state) {
     check_point_light_by_photons_converges(state, "pppm");
 }
 
+/* Irradiance at distance rho off the axis of a disk light of radius R and radiance L at
+ * height h facing the plane: E = pi L / 2 (1 - (h^2 + rho^2 - R^2) / sqrt((h^2 + rho^2 + R^2)^2
+ * - 4 R^2 rho^2)) (the view factor of a coaxial disk). */
+static double disk_irradiance(double rho, double radius, double radiance) {
+    const double h2 = kHeight * kHeight, r2 = radius * radius, p2 = rho * rho;
+    return kPi * radiance / 2 * (1 - (h2 + p2 - r2) / sqrt((h2 + p2 + r2) * (h2 + p2 + r2) - 4 * r2 * p2));
+}
+
+/* Mean over the image of the rendered radiance over the analytic one (the box filter's
+ * average over each pixel, 4 x 4 sub-samples), leaving out the pixels that see the light's
+ * back (the camera looks past the light at the plane: plane points within
+ * radius * kCameraHeight / (kCameraHeight - kHeight) of the axis, plus a margin). */
+static double disk_light_ratio(const image *im, double radius, double radiance) {
+    const double hidden = 1.15 * radius * kCameraHeight / (kCameraHeight - kHeight);
+    double sum = 0;
+    int n = 0;
+    for (int y = 0; y < im->height; ++y)
+        for (int x = 0; x < im->width; ++x) {
+            double expected = 0;
+            int seen = 1;
+            for (int j = 0; j < 4; ++j)
+                for (int i = 0; i < 4; ++i) {
+                    double px, py;
+                    plane_point_at(x + (i + 0.5) / 4, y + (j + 0.5) / 4, im->width, &px, &py);
+                    const double rho = sqrt(px * px + py * py);
+                    if (rho < hidden) seen = 0;
+                    expected += kRho / kPi * disk_irradiance(rho, radius, radiance) / 16;
+                }
+            if (!seen) continue;
+            for (int c = 0; c < 3; ++c, ++n) sum += im->rgb[3 * (y * im->width + x) + c] / expected;
+        }
+    assert_true(n > im->width * im->height);
+    return sum / n;
+}
+
+/* The plane under a disk light (radius 0.5 at kHeight, facing down) as a `disk` shape and as a
+ * 256-triangle mesh fan (area short by 1e-4): by shadow rays and by photons alike. */
+static void disk_and_mesh_lights_on_plane(void **state) {
+    const double radius = 0.5, radiance = 3;
+    for (int mesh = 0; mesh < 2; ++mesh)
+        for (int photons = 0; photons < 2; ++photons) {
+            scene_fixture *f = *state;
+            ppm_scene_release(f->scene);
+            assert_ppm_ok(ppm_scene_create(f->context, &f->scene));
+            build_plane(f->scene);
+            uint32_t id = 0;
+            if (mesh) {
+                enum { n = 256 };
+                double positions[3 * (n + 1)];
+                uint32_t indices[3 * n];
+                positions[0] = positions[1] = 0;
+                positions[2] = kHeight;
+                for (int k = 0; k < n; ++k) {
+                    const double phi = 2 * kPi * k / n;
+                    positions[3 * (k + 1)] = radius * cos(phi);
+                    positions[3 * (k + 1) + 1] = radius * sin(phi);
+                    positions[3 * (k + 1) + 2] = kHeight;
+                    /* clockwise seen from above: face normal -z */
+                    indices[3 * k] = 0;
+                    indices[3 * k + 1] = (uint32_t)(1 + (k + 1) % n);
+                    indices[3 * k + 2] = (uint32_t)(1 + k);
+                }
+                assert_ppm_ok(ppm_scene_add_triangle_mesh(f->scene, positions, n + 1, indices, n, NULL, NULL, &id));
+            } else {
+                const double center[3] = {0, 0, kHeight}, au[3] = {0, radius, 0}, av[3] = {radius, 0, 0};
+                assert_ppm_ok(ppm_scene_add_disk(f->scene, center, au, av, &id)); /* au x av = -z */
+            }
+            const double l[3] = {radiance, radiance, radiance}, black[3] = {0, 0, 0};
+            assert_ppm_ok(ppm_scene_set_geometry_emission(f->scene, id, l));
+            uint32_t absorber = 0; /* the light reflects nothing back onto the plane */
+            assert_ppm_ok(ppm_scene_add_diffuse_material(f->scene, black, &absorber));
+            assert_ppm_ok(ppm_scene_set_geometry_material(f->scene, id, absorber));
+            assert_ppm_ok(ppm_scene_commit(f->scene));
+            const double origin[3] = {0, 0, kCameraHeight}, target[3] = {0, 0, 0};
+            ppm_renderer r = make_renderer(f->scene, origin, target, kFov, 24, 24);
+            assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", photons ? 40000 : 1000));
+            assert_ppm_ok(ppm_renderer_set_int(r, "direct_lighting", !photons));
+            if (photons) assert_ppm_ok(ppm_renderer_set_double(r, "initial_radius_pixels", 2));
+            image im = render(r, photons ? 48 : 32);
+            const double ratio = disk_light_ratio(&im, radius, radiance);
+            print_message("%s light on the plane, %s: mean ratio to the analytic radiance %.4f\n",
+                          mesh ? "disk mesh" : "disk", photons ? "photons" : "shadow rays", ratio);
+            assert_true(fabs(ratio - 1) < (photons ? 0.03 : 0.01));
+            free(im.rgb);
+            ppm_renderer_release(r);
+        }
+}
+
 static void spot_light_beam_and_cutoff(void **state) {
     scene_fixture *f = *state;
     build_plane(f->scene);
@@ -473,7 +563,7 @@ static void scene_errors(void **state) {
     assert_ppm_error(ppm_scene_set_geometry_emission(f->scene, 99, grey), PPM_ERROR_INVALID_ARGUMENT, "99");
     assert_ppm_ok(ppm_scene_set_geometry_material(f->scene, quad, diffuse));
     assert_ppm_error(ppm_scene_set_geometry_emission(f->scene, patches, grey), PPM_ERROR_INVALID_ARGUMENT,
-                     "only quads and spheres");
+                     "Bezier patches cannot be area lights");
     assert_ppm_ok(ppm_scene_set_geometry_material(f->scene, patches, 5));
     assert_ppm_ok(ppm_scene_commit(f->scene));
     const double origin[3] = {0, -10, 2}, target[3] = {0, 0, 1};
@@ -504,6 +594,7 @@ int main(void) {
         cmocka_unit_test_setup_teardown(point_light_on_plane_by_photons_converges_pppm, scene_fixture_setup,
                                         scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(spot_light_beam_and_cutoff, scene_fixture_setup, scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(disk_and_mesh_lights_on_plane, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(photons_agree_with_shadow_rays_for_two_lights, scene_fixture_setup,
                                         scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(same_image_with_either_search_and_the_tree_in_parts, scene_fixture_setup,

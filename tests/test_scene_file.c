@@ -199,6 +199,97 @@ static void test_defaults_and_inline_patches(void **state) {
     ppm_scene_file_release(file);
 }
 
+/* Area lights on disks, cylinders and meshes (obj, cube, rectangle), and flip_normals, from
+ * JSON and from Mitsuba XML; hits on the new shapes in world space. */
+static void check_light_scene(fixture *f, const char *path, int64_t lights) {
+    ppm_scene_file file = NULL;
+    if (ppm_scene_file_load(f->context, path, &file) != PPM_OK) fail_msg("%s", ppm_last_error_message());
+    ppm_scene scene = NULL;
+    assert_int_equal(ppm_scene_file_get_scene(file, &scene), PPM_OK);
+    /* The disk: radius 0.5 at y = 2, its normal +y flipped to -y. */
+    ppm_ray down = {{0.2, 5, 0}, 0, {0, -1, 0}, INFINITY};
+    ppm_hit hit;
+    assert_int_equal(ppm_scene_intersect(scene, &down, 1, &hit), PPM_OK);
+    assert_close(hit.t, 3, 1e-9);
+    assert_close(hit.ng[1], -1, 1e-12);
+    assert_close(hit.u, 0.4, 1e-9); /* r = 0.2 / 0.5 */
+    /* The cylinder: radius 0.25 around x = 3, z from 0 to 2 (p1 (0, 0, 2) scaled by the radius
+     * and moved), hit from +x at x = 3.25. */
+    ppm_ray side = {{10, 0, 1}, 0, {-1, 0, 0}, INFINITY};
+    assert_int_equal(ppm_scene_intersect(scene, &side, 1, &hit), PPM_OK);
+    assert_close(hit.t, 6.75, 1e-9);
+    assert_close(hit.ng[0], 1, 1e-12);
+    assert_close(hit.v, 0.5, 1e-9);
+    ppm_renderer renderer = NULL;
+    if (ppm_scene_file_create_renderer(file, &renderer) != PPM_OK) fail_msg("%s", ppm_last_error_message());
+    int64_t count = 0;
+    assert_int_equal(ppm_renderer_get_int(renderer, "lights", &count), PPM_OK);
+    assert_int_equal(count, lights);
+    ppm_renderer_release(renderer);
+    ppm_scene_release(scene);
+    ppm_scene_file_release(file);
+}
+
+static void test_area_lights_on_disks_cylinders_and_meshes(void **state) {
+    fixture *f = *state;
+    char obj[400], xml[400];
+    snprintf(obj, sizeof obj, "%s/tri.obj", f->folder);
+    write_text(obj, "v -10 -1 -10\nv 10 -1 -10\nv 0 -1 10\nf 1 3 2\n");
+    write_text(
+        f->path,
+        "{\"shapes\": [\n"
+        " {\"type\": \"disk\", \"flip_normals\": true, \"emitter\": {\"type\": \"area\", \"radiance\": 2},\n"
+        "  \"to_world\": [{\"scale\": 0.5}, {\"rotate\": {\"axis\": [1, 0, 0], \"angle\": -90}},\n"
+        "               {\"translate\": [0, 2, 0]}]},\n"
+        " {\"type\": \"cylinder\", \"p1\": [0, 0, 2], \"emitter\": {\"type\": \"area\"},\n"
+        "  \"to_world\": [{\"scale\": 0.25}, {\"translate\": [3, 0, 0.75]}]},\n"
+        " {\"type\": \"obj\", \"filename\": \"tri.obj\", \"emitter\": {\"type\": \"area\", \"radiance\": 0.5}},\n"
+        " {\"type\": \"cube\", \"emitter\": {\"type\": \"area\"}, \"flip_normals\": true,\n"
+        "  \"to_world\": {\"translate\": [0, 0, 50]}},\n"
+        " {\"type\": \"rectangle\", \"to_world\": {\"translate\": [0, 0, -50]}}]}\n");
+    check_light_scene(f, f->path, 4);
+
+    snprintf(xml, sizeof xml, "%s/scene.xml", f->folder);
+    write_text(xml,
+               "<scene version=\"3.0.0\">\n"
+               " <shape type=\"disk\"><boolean name=\"flip_normals\" value=\"true\"/>\n"
+               "  <transform name=\"to_world\"><scale value=\"0.5\"/><rotate x=\"1\" angle=\"-90\"/>"
+               "<translate y=\"2\"/></transform>\n"
+               "  <emitter type=\"area\"><rgb name=\"radiance\" value=\"2\"/></emitter></shape>\n"
+               " <shape type=\"cylinder\"><point name=\"p1\" x=\"0\" y=\"0\" z=\"2\"/>\n"
+               "  <transform name=\"to_world\"><scale value=\"0.25\"/><translate x=\"3\" z=\"0.75\"/></transform>\n"
+               "  <emitter type=\"area\"/></shape>\n"
+               " <shape type=\"obj\"><string name=\"filename\" value=\"tri.obj\"/>\n"
+               "  <emitter type=\"area\"><rgb name=\"radiance\" value=\"0.5\"/></emitter></shape>\n"
+               "</scene>\n");
+    check_light_scene(f, xml, 3);
+
+    /* A mirroring to_world keeps Mitsuba's disk normal, the inverse transpose's +z. */
+    write_text(f->path, "{\"shapes\": [{\"type\": \"disk\", \"to_world\": {\"scale\": [-1, 1, 1]}}]}");
+    ppm_scene_file file = NULL;
+    assert_int_equal(ppm_scene_file_load(f->context, f->path, &file), PPM_OK);
+    ppm_scene scene = NULL;
+    assert_int_equal(ppm_scene_file_get_scene(file, &scene), PPM_OK);
+    ppm_ray down = {{0.2, 0.1, 3}, 0, {0, 0, -1}, INFINITY};
+    ppm_hit hit;
+    assert_int_equal(ppm_scene_intersect(scene, &down, 1, &hit), PPM_OK);
+    assert_close(hit.ng[2], 1, 1e-12);
+    ppm_scene_release(scene);
+    ppm_scene_file_release(file);
+
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"cylinder\", \"p0\": [1, 1, 1], \"p1\": [1, 1, 1]}]}", PPM_ERROR_PARSE,
+                 "p0 and p1");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"cylinder\", \"radius\": 0}]}", PPM_ERROR_PARSE, "radius");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"cylinder\", \"to_world\": {\"scale\": [1, 2, 1]}}]}", PPM_ERROR_PARSE,
+                 "circular");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"sphere\", \"flip_normals\": true}]}", PPM_ERROR_PARSE, "flip_normals");
+    EXPECT_ERROR(f,
+                 "{\"shapes\": [{\"type\": \"bezier\", \"emitter\": {\"type\": \"area\"}, \"patches\": [[\n"
+                 "  [0,0,5],[1,0,5],[2,0,5],[3,0,5], [0,1,5],[1,1,5],[2,1,5],[3,1,5],\n"
+                 "  [0,2,5],[1,2,5],[2,2,5],[3,2,5], [0,3,5],[1,3,5],[2,3,5],[3,3,5]]]}]}",
+                 PPM_ERROR_INVALID_ARGUMENT, "Bezier patches cannot be area lights");
+}
+
 static void test_errors_are_located(void **state) {
     fixture *f = *state;
     /* JSON syntax: line and column of the problem. */
@@ -399,6 +490,7 @@ int main(void) {
         cmocka_unit_test_setup_teardown(test_small_box_builds_what_it_says, setup, teardown),
         cmocka_unit_test_setup_teardown(test_defaults_and_inline_patches, setup, teardown),
         cmocka_unit_test_setup_teardown(test_errors_are_located, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_area_lights_on_disks_cylinders_and_meshes, setup, teardown),
         cmocka_unit_test_setup_teardown(test_missing_and_malformed_files, setup, teardown),
         cmocka_unit_test_setup_teardown(test_unreadable_bytes_and_deep_nesting, setup, teardown),
         cmocka_unit_test_setup_teardown(test_overflowing_magnitudes_are_refused_where_they_stand, setup, teardown),

@@ -198,6 +198,28 @@ PPM_API ppm_status ppm_scene_load_bpt(ppm_scene scene, const char *path, uint32_
  * from +z and phi from +x towards +y (Mitsuba 3's convention). */
 PPM_API ppm_status ppm_scene_add_sphere(ppm_scene scene, const double center[3], double radius, uint32_t *out_geom_id);
 
+/* Disk (Mitsuba 3's `disk`, an ellipse for non-orthogonal or unequal axes)
+ * {center + x*axis_u + y*axis_v : x^2 + y^2 <= 1}; geometric normal axis_u x axis_v (unit);
+ * hit (u, v) = (r, phi / 2pi) with r = sqrt(x^2 + y^2) and phi from axis_u towards axis_v,
+ * as Mitsuba's. Mitsuba's default disk is center (0, 0, 0), axes (1, 0, 0) and (0, 1, 0).
+ * Two-sided. Errors: INVALID_ARGUMENT (NaN, axes zero or parallel: no area). */
+PPM_API ppm_status ppm_scene_add_disk(ppm_scene scene, const double center[3], const double axis_u[3],
+                                      const double axis_v[3], uint32_t *out_geom_id);
+
+/* Open cylinder (Mitsuba 3's `cylinder`: a tube without caps) of `radius` around the segment
+ * p0 -> p1; normals point away from the axis. Hit (u, v) = (phi / 2pi, z / |p1 - p0|), z the
+ * height above p0 and phi about the axis from the tangent s of Duff et al.'s orthonormal
+ * basis of the unit axis towards t (Mitsuba's coordinate_system). Takes only rotations,
+ * translations and uniform scaling as its transform. Two-sided. Errors: INVALID_ARGUMENT
+ * (NaN, p0 == p1, radius not in (0, coordinate limit]). */
+PPM_API ppm_status ppm_scene_add_cylinder(ppm_scene scene, const double p0[3], const double p1[3], double radius,
+                                          uint32_t *out_geom_id);
+
+/* Mitsuba's `flip_normals`: hits on the geometry report the opposite ng and ns, and an area
+ * light on it emits on the other side. For triangle meshes, quads, disks and cylinders.
+ * Errors: INVALID_ARGUMENT (a sphere or patch set: not supported). */
+PPM_API ppm_status ppm_scene_set_geometry_flip_normals(ppm_scene scene, uint32_t geom_id, int flip);
+
 /* Parallelogram (a rectangle when the edges are orthogonal) {origin + s*edge_u + t*edge_v :
  * s, t in [0, 1]}; hit (u, v) = (s, t); geometric normal edge_u x edge_v. Two-sided. */
 PPM_API ppm_status ppm_scene_add_quad(ppm_scene scene, const double origin[3], const double edge_u[3],
@@ -456,9 +478,15 @@ PPM_API ppm_status ppm_scene_add_point_light(ppm_scene scene, const double posit
 PPM_API ppm_status ppm_scene_add_spot_light(ppm_scene scene, const double position[3], const double target[3],
                                             const double intensity[3], double cutoff_angle, double beam_width,
                                             uint32_t *out_light_id);
-/* Makes a quad or sphere an area light (Mitsuba `area`): constant `radiance` (W/(m^2 sr) per
- * channel) on the side the normal points to (quad: edge_u x edge_v; sphere: outside).
- * Black turns it off. Errors: INVALID_ARGUMENT (other kinds, negative or NaN values). */
+/* Makes a quad, sphere, disk, cylinder or triangle mesh an area light (Mitsuba `area`):
+ * constant `radiance` (W/(m^2 sr) per channel) on the side the normal points to (quad:
+ * edge_u x edge_v; sphere and cylinder: outside; disk: axis_u x axis_v; mesh: the shading
+ * normal, i.e. the interpolated vertex normal where the mesh has normals, else the face normal
+ * (p1 - p0) x (p2 - p0)), reversed by ppm_scene_set_geometry_flip_normals. Power pi L A with A
+ * the exact area (a mesh's: the sum of its triangles'). A mesh light samples points uniformly
+ * in area (a table over its triangles, made when rendering starts) and shares the mesh's data
+ * without copying it. Black turns it off. Errors: INVALID_ARGUMENT (a Bezier patch set:
+ * patches cannot be area lights; negative or NaN values). */
 PPM_API ppm_status ppm_scene_set_geometry_emission(ppm_scene scene, uint32_t geom_id, const double radiance[3]);
 
 /* Materials, textures and lights by type name and named parameters, as Mitsuba 3's load_dict

@@ -14,6 +14,8 @@
 #include "io/obj_reader.h"
 #include "io/ply_reader.h"
 #include "io/serialized_reader.h"
+#include "scene/cylinder_geometry.h"
+#include "scene/disk_geometry.h"
 #include "scene/mesh_geometry.h"
 #include "scene/patch_geometry.h"
 #include "scene/quad_geometry.h"
@@ -258,6 +260,44 @@ ppm_status ppm_scene_add_sphere(ppm_scene scene, const double center[3], double 
             invalid_argument("sphere radius must lie in (0, " + ppm::format_number(ppm::kCoordinateLimit) + "], not " +
                              ppm::format_number(radius));
         return std::make_unique<ppm::SphereGeometry>(c, radius);
+    });
+}
+
+ppm_status ppm_scene_add_disk(ppm_scene scene, const double center[3], const double axis_u[3], const double axis_v[3],
+                              uint32_t *out_geom_id) {
+    return add_geometry(scene, out_geom_id, [&] {
+        const ppm::Vec3 c = finite_point(center, "center");
+        const ppm::Vec3 au = finite_point(axis_u, "axis_u");
+        const ppm::Vec3 av = finite_point(axis_v, "axis_v");
+        const double area = ppm::length(ppm::cross(au, av));
+        if (!(area > 1e-12 * ppm::length(au) * ppm::length(av)) || !std::isfinite(area))
+            invalid_argument("disk axes are zero or parallel: the disk has no area");
+        return std::make_unique<ppm::DiskGeometry>(c, au, av);
+    });
+}
+
+ppm_status ppm_scene_add_cylinder(ppm_scene scene, const double p0[3], const double p1[3], double radius,
+                                  uint32_t *out_geom_id) {
+    return add_geometry(scene, out_geom_id, [&] {
+        const ppm::Vec3 a = finite_point(p0, "p0"), b = finite_point(p1, "p1");
+        if (!(radius > 0) || !(radius <= ppm::kCoordinateLimit))
+            invalid_argument("cylinder radius must lie in (0, " + ppm::format_number(ppm::kCoordinateLimit) +
+                             "], not " + ppm::format_number(radius));
+        if (!(ppm::length(b - a) > 1e-12 * std::max(ppm::max_abs_component(a), ppm::max_abs_component(b))) ||
+            ppm::length(b - a) == 0)
+            invalid_argument("cylinder p0 and p1 are equal: the cylinder has no length");
+        return std::make_unique<ppm::CylinderGeometry>(a, b, radius);
+    });
+}
+
+ppm_status ppm_scene_set_geometry_flip_normals(ppm_scene scene, uint32_t geom_id, int flip) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        ppm::Geometry &g = s.geometry(geom_id);
+        if (dynamic_cast<ppm::SphereGeometry *>(&g) || dynamic_cast<ppm::PatchGeometry *>(&g))
+            invalid_argument("geometry " + std::to_string(geom_id) + " is a " + g.kind() +
+                             "; flip_normals is supported on triangle meshes, quads, disks and cylinders");
+        if (g.flip_normals != (flip != 0)) s.mark_modified();
+        g.flip_normals = flip != 0;
     });
 }
 

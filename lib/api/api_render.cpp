@@ -172,9 +172,10 @@ ppm_status ppm_scene_set_geometry_emission(ppm_scene scene, uint32_t geom_id, co
     return scene_call(scene, [&](ppm_scene_t &s) {
         ppm::Geometry &g = s.geometry(geom_id);
         const ppm::Rgb rgb = read_emission(radiance, "radiance");
-        if (!dynamic_cast<ppm::QuadGeometry *>(&g) && !dynamic_cast<ppm::SphereGeometry *>(&g))
+        if (dynamic_cast<ppm::PatchGeometry *>(&g))
             invalid_argument("geometry " + std::to_string(geom_id) + " is a " + g.kind() +
-                             "; only quads and spheres can be area lights");
+                             "; Bezier patches cannot be area lights (quads, spheres, disks, cylinders and "
+                             "triangle meshes can: tessellate the patches into a mesh to make them emit)");
         s.shading.set_emission(geom_id, rgb);
         // Every shadow ray towards the light names it (RayHints::skip_geometry).
         if (!rgb.is_black()) s.prefer_mask_bit(geom_id);

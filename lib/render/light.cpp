@@ -2,11 +2,14 @@
 #include "render/light.h"
 
 #include "core/error.h"
+#include "geometry/mesh_data.h"
 #include "math/sin_cos.h"
 #include "render/warp.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace ppm {
 
@@ -113,6 +116,128 @@ Light Light::sphere(const Vec3 &center, double radius, const Rgb &radiance) {
     return l;
 }
 
+Light Light::disk(const Vec3 &center, const Vec3 &axis_u, const Vec3 &axis_v, const Rgb &radiance, bool flip) {
+    check_point(center, "center");
+    check_color(radiance, "radiance");
+    const Vec3 n = cross(axis_u, axis_v);
+    if (!(length(n) > 0) || !is_finite(n)) invalid_argument("area light disk has zero area");
+    Light l;
+    l.type_ = Type::Disk;
+    l.position_ = center;
+    l.edge_u_ = axis_u;
+    l.edge_v_ = axis_v;
+    l.normal_sign_ = flip ? -1 : 1;
+    l.frame_ = Frame::from_normal(n / length(n) * l.normal_sign_);
+    l.area_ = kPi * length(n); // an affine map scales every area by |axis_u x axis_v|
+    l.color_ = radiance;
+    l.power_ = radiance * (kPi * l.area_);
+    return l;
+}
+
+Light Light::cylinder(const Vec3 &p0, const Vec3 &p1, double radius, const Rgb &radiance, bool flip) {
+    check_point(p0, "p0");
+    check_point(p1, "p1");
+    check_color(radiance, "radiance");
+    const double height = length(p1 - p0);
+    if (!(height > 0) || !std::isfinite(height)) invalid_argument("area light cylinder has p0 == p1");
+    if (!(radius > 0) || !std::isfinite(radius)) invalid_argument("area light cylinder radius must be > 0");
+    Light l;
+    l.type_ = Type::Cylinder;
+    l.position_ = p0;
+    l.edge_u_ = p1 - p0;
+    l.radius_ = radius;
+    l.normal_sign_ = flip ? -1 : 1;
+    l.frame_ = Frame::from_normal(l.edge_u_ / height); // n = axis; s, t span the cross-section
+    l.area_ = 2 * kPi * radius * height;
+    l.color_ = radiance;
+    l.power_ = radiance * (kPi * l.area_);
+    return l;
+}
+
+Light Light::mesh(std::shared_ptr<const MeshData> mesh, const Rgb &radiance, bool flip) {
+    check_color(radiance, "radiance");
+    if (!mesh || mesh->indices.size() < 3) invalid_argument("area light mesh has no triangles");
+    auto table = std::make_shared<MeshTable>();
+    const MeshData &m = *mesh;
+    const size_t count = m.indices.size() / 3;
+    table->cdf.resize(count);
+    double sum = 0;
+    for (size_t k = 0; k < count; ++k) {
+        const Vec3 &p0 = m.positions[m.indices[3 * k]];
+        sum += 0.5 * length(cross(m.positions[m.indices[3 * k + 1]] - p0, m.positions[m.indices[3 * k + 2]] - p0));
+        table->cdf[k] = sum;
+    }
+    if (!(sum > 0) || !std::isfinite(sum)) invalid_argument("area light mesh has zero area");
+    for (double &c : table->cdf) c /= sum;
+    table->cdf.back() = 1;
+    table->mesh = std::move(mesh);
+    Light l;
+    l.type_ = Type::Mesh;
+    l.normal_sign_ = flip ? -1 : 1;
+    l.area_ = sum;
+    l.color_ = radiance;
+    l.power_ = radiance * (kPi * sum);
+    l.table_ = std::move(table);
+    return l;
+}
+
+size_t Light::pick_triangle(double u) const {
+    if (!table_) return 0;
+    const std::vector<double> &cdf = table_->cdf;
+    // First entry above u: a zero-area triangle repeats its predecessor's value and is skipped.
+    return std::min<size_t>(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin(), cdf.size() - 1);
+}
+
+void Light::sample_area(double u1, double u2, Vec3 *p, Vec3 *n, Vec3 *ng) const {
+    switch (type_) {
+    case Type::Quad:
+        *p = position_ + edge_u_ * u1 + edge_v_ * u2;
+        *n = *ng = frame_.n;
+        return;
+    case Type::Disk: {
+        const double r = std::sqrt(u1);
+        double sin_phi, cos_phi;
+        sin_cos_2pi(u2, &sin_phi, &cos_phi);
+        *p = position_ + edge_u_ * (r * cos_phi) + edge_v_ * (r * sin_phi);
+        *n = *ng = frame_.n;
+        return;
+    }
+    case Type::Cylinder: {
+        double sin_phi, cos_phi;
+        sin_cos_2pi(u2, &sin_phi, &cos_phi);
+        const Vec3 radial = frame_.s * cos_phi + frame_.t * sin_phi;
+        *p = position_ + edge_u_ * u1 + radial * radius_;
+        *n = *ng = radial * normal_sign_;
+        return;
+    }
+    case Type::Mesh: {
+        const MeshData &m = *table_->mesh;
+        const std::vector<double> &cdf = table_->cdf;
+        const size_t k = pick_triangle(u1);
+        // Reuse u1 within the chosen triangle's interval of the CDF.
+        const double lo = k > 0 ? cdf[k - 1] : 0.0, width = cdf[k] - lo;
+        const double v1 = width > 0 ? std::clamp((u1 - lo) / width, 0.0, 1.0) : 0.5;
+        // Uniform in the triangle (square_to_uniform_triangle): b1 = 1 - sqrt(v1), b2 = u2 sqrt(v1).
+        const double s = std::sqrt(v1), b1 = 1 - s, b2 = u2 * s, b0 = 1 - b1 - b2;
+        const uint32_t i0 = m.indices[3 * k], i1 = m.indices[3 * k + 1], i2 = m.indices[3 * k + 2];
+        const Vec3 &p0 = m.positions[i0], &p1 = m.positions[i1], &p2 = m.positions[i2];
+        *p = p0 * b0 + p1 * b1 + p2 * b2;
+        const Vec3 face = normalize(cross(p1 - p0, p2 - p0)) * normal_sign_;
+        *n = face;
+        if (!m.normals.empty()) {
+            const Vec3 interpolated = m.normals[i0] * b0 + m.normals[i1] * b1 + m.normals[i2] * b2;
+            if (length2(interpolated) > 0) *n = normalize(interpolated) * normal_sign_;
+        }
+        *ng = face;
+        return;
+    }
+    default:
+        *p = position_;
+        *n = *ng = frame_.n;
+        return;
+    }
+}
+
 Rgb Light::spot_intensity(double cos_theta) const {
     if (cos_theta <= cos_cutoff_) return Rgb();
     if (cos_theta >= cos_beam_) return color_;
@@ -146,6 +271,19 @@ EmittedPhoton Light::emit(double u1, double u2, double u3, double u4) const {
         const Vec3 n = uniform_sphere(u1, u2);
         photon.direction = Frame::from_normal(n).to_world(square_to_cosine_hemisphere(u3, u4));
         photon.origin = position_ + n * (radius_ + surface_offset_);
+        photon.flux = power_;
+        break;
+    }
+    case Type::Disk:
+    case Type::Cylinder:
+    case Type::Mesh: {
+        Vec3 p, n, ng;
+        sample_area(u1, u2, &p, &n, &ng);
+        // Cosine-weighted about the emitting normal (Mitsuba's area emitter sample_ray), so
+        // the flux is pi L A; the start is moved off the surface along the face normal, on the
+        // side the photon leaves to.
+        photon.direction = Frame::from_normal(n).to_world(square_to_cosine_hemisphere(u3, u4));
+        photon.origin = p + ng * (dot(photon.direction, ng) >= 0 ? surface_offset_ : -surface_offset_);
         photon.flux = power_;
         break;
     }
@@ -193,6 +331,22 @@ DirectLightSample Light::sample_direct(const Vec3 &p, double u1, double u2) cons
         const double b = dc * local.z, disc = std::max(0.0, r2 - (dc2 - b * b));
         s.distance = std::max(0.0, b - std::sqrt(disc));
         s.radiance_over_pdf = color_ * (2.0 * kPi * one_minus_cos);
+        return s;
+    }
+    case Type::Disk:
+    case Type::Cylinder:
+    case Type::Mesh: {
+        Vec3 q, n, ng;
+        sample_area(u1, u2, &q, &n, &ng);
+        const Vec3 to_light = q - p;
+        const double d2 = length2(to_light);
+        s.distance = std::sqrt(d2);
+        if (!(s.distance > 0)) return s;
+        const double inv_distance = 1.0 / s.distance;
+        s.direction = to_light * inv_distance;
+        // pdf in solid angle = dist^2 / (cos_light A).
+        const double cos_light = -dot(s.direction, n);
+        if (cos_light > 0) s.radiance_over_pdf = color_ * (area_ * cos_light * (inv_distance * inv_distance));
         return s;
     }
     }

@@ -3,9 +3,17 @@
 //  - point (`point`): `intensity` I in W/sr, power 4 pi I;
 //  - spot (`spot`): intensity I on the axis, full up to `beam_width` and falling linearly in
 //    angle to zero at `cutoff_angle` (src/emitters/spot.cpp, falloff_curve);
-//  - area (`area` on a `rectangle` or `sphere` shape): `radiance` L, emitted on the side the
-//    surface normal points to only (the quad's edge_u x edge_v, the sphere's outside), with
-//    power pi L A.
+//  - area (`area` on a `rectangle`, `sphere`, `disk`, `cylinder` or triangle mesh shape):
+//    `radiance` L, emitted on the side the surface normal points to only (the quad's
+//    edge_u x edge_v, the sphere's outside, the disk's axis_u x axis_v, the cylinder's outside,
+//    a mesh's shading normal; all reversed by flip_normals), with power pi L A.
+//    A mesh light follows Mitsuba 3's area emitter on a mesh (src/emitters/area.cpp,
+//    src/render/mesh.cpp sample_position): a point uniform in area (a triangle from a CDF over
+//    the areas, then uniform in it), whose normal is the interpolated vertex normal when the
+//    mesh has vertex normals and the face normal otherwise. That normal decides the emitting
+//    side and gives the cosine of the solid-angle pdf dist^2 / (cos A) and of the photons'
+//    cosine-weighted directions; a camera ray sees the emission when it arrives on the side
+//    of the hit's shading normal (RenderScene::shade), the same normal.
 // A light answers the two questions the renderer asks: a photon leaving it (emit) and the
 // light arriving at a point from one sample on it (sample_direct).
 #pragma once
@@ -15,8 +23,12 @@
 #include "math/vec3.h"
 
 #include <cstdint>
+#include <memory>
+#include <vector>
 
 namespace ppm {
+
+struct MeshData;
 
 struct EmittedPhoton {
     Vec3 origin;
@@ -33,7 +45,7 @@ struct DirectLightSample {
 
 class Light {
 public:
-    enum class Type { Point, Spot, Quad, Sphere };
+    enum class Type { Point, Spot, Quad, Sphere, Disk, Cylinder, Mesh };
 
     // Factories check their arguments (finite, non-negative colours; positive sizes; angles
     // with 0 < beam_width <= cutoff_angle <= 90 degrees) and throw ppm::Error naming the bad one.
@@ -42,6 +54,22 @@ public:
                       double beam_width_degrees);
     static Light quad(const Vec3 &origin, const Vec3 &edge_u, const Vec3 &edge_v, const Rgb &radiance);
     static Light sphere(const Vec3 &center, double radius, const Rgb &radiance);
+    // {center + x axis_u + y axis_v : x^2 + y^2 <= 1} (an ellipse under a general transform),
+    // emitting towards axis_u x axis_v, or away from it when `flip`.
+    static Light disk(const Vec3 &center, const Vec3 &axis_u, const Vec3 &axis_v, const Rgb &radiance, bool flip);
+    // The open tube of `radius` around the segment p0 -> p1, emitting outwards (inwards when
+    // `flip`).
+    static Light cylinder(const Vec3 &p0, const Vec3 &p1, double radius, const Rgb &radiance, bool flip);
+    // A triangle mesh in world space, shared (not copied): the light keeps it alive. Triangles
+    // of zero area are never sampled; a mesh of zero total area is refused.
+    static Light mesh(std::shared_ptr<const MeshData> mesh, const Rgb &radiance, bool flip);
+
+    // Surface area of an area light (0 for point and spot lights).
+    double area() const { return area_; }
+    // Index of the triangle a uniform number picks (mesh lights; probability area / total).
+    size_t pick_triangle(double u) const;
+    // The mesh a mesh light samples (the geometry's own world-space data), else null.
+    const MeshData *mesh_data() const { return table_ ? table_->mesh.get() : nullptr; }
 
     Type type() const { return type_; }
     Rgb power() const { return power_; }
@@ -62,17 +90,27 @@ public:
 private:
     Light() = default;
     Rgb spot_intensity(double cos_theta) const;
+    // A point of an area light uniform in area, and its unit emitting normal `n`; `ng` is the
+    // surface's own (face) normal on the emitting side, for the photons' offset.
+    void sample_area(double u1, double u2, Vec3 *p, Vec3 *n, Vec3 *ng) const;
+
+    struct MeshTable {
+        std::shared_ptr<const MeshData> mesh;
+        std::vector<double> cdf; // cumulative triangle areas over the total, last = 1
+    };
 
     Type type_ = Type::Point;
     Rgb color_; // intensity (point, spot) or radiance (area)
     Rgb power_;
-    Vec3 position_; // point/spot position, quad origin, sphere centre
-    Vec3 edge_u_, edge_v_;
-    Frame frame_; // spot: n = axis; quad: n = unit normal
+    Vec3 position_;        // point/spot position, quad origin, sphere centre
+    Vec3 edge_u_, edge_v_; // quad edges, disk axes; cylinder: p1 - p0 in edge_u_
+    Frame frame_;          // spot: n = axis; quad: n = unit normal
     double area_ = 0;
     double radius_ = 0;
     double cos_cutoff_ = 0, cos_beam_ = 1, cutoff_ = 0, beam_ = 0;
     double surface_offset_ = 0;
+    double normal_sign_ = 1; // -1 when flip_normals
+    std::shared_ptr<const MeshTable> table_;
     uint32_t geom_id_ = 0xFFFFFFFFu; // PPM_INVALID_ID
 };
 

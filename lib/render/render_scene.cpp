@@ -2,6 +2,9 @@
 #include "render/render_scene.h"
 
 #include "core/error.h"
+#include "scene/cylinder_geometry.h"
+#include "scene/disk_geometry.h"
+#include "scene/mesh_geometry.h"
 #include "scene/quad_geometry.h"
 #include "scene/sphere_geometry.h"
 
@@ -11,23 +14,36 @@ namespace ppm {
 
 namespace {
 
-Light area_light(const Geometry &g, uint32_t geom_id, const Rgb &emission, double offset) {
+Light make_area_light(const Geometry &g, uint32_t geom_id, const Rgb &emission) {
+    const bool flip = g.flip_normals;
     if (auto *quad = dynamic_cast<const QuadGeometry *>(&g)) {
         const QuadGeometry::Data &d = quad->data();
-        Light light = Light::quad(d.origin, d.edge_u, d.edge_v, emission);
-        light.set_surface_offset(offset);
-        light.set_geometry(geom_id);
-        return light;
+        // Flipped: the same parallelogram with its edges swapped, so its normal reversed.
+        return flip ? Light::quad(d.origin, d.edge_v, d.edge_u, emission)
+                    : Light::quad(d.origin, d.edge_u, d.edge_v, emission);
     }
     if (auto *sphere = dynamic_cast<const SphereGeometry *>(&g)) {
         const SphereGeometry::Data &d = sphere->data();
-        Light light = Light::sphere(d.center, d.radius, emission);
-        light.set_surface_offset(offset);
-        light.set_geometry(geom_id);
-        return light;
+        return Light::sphere(d.center, d.radius, emission);
     }
+    if (auto *disk = dynamic_cast<const DiskGeometry *>(&g)) {
+        const DiskGeometry::Data &d = disk->data();
+        return Light::disk(d.center, d.axis_u, d.axis_v, emission, flip);
+    }
+    if (auto *cylinder = dynamic_cast<const CylinderGeometry *>(&g)) {
+        const CylinderGeometry::Data &d = cylinder->data();
+        return Light::cylinder(d.p0, d.p1, d.radius, emission, flip);
+    }
+    if (auto *mesh = dynamic_cast<const MeshGeometry *>(&g)) return Light::mesh(mesh->shared_world(), emission, flip);
     invalid_argument("geometry " + std::to_string(geom_id) + " (" + g.kind() +
-                     ") emits light, but only quads and spheres can be area lights");
+                     ") emits light, but only quads, spheres, disks, cylinders and triangle meshes can be area lights");
+}
+
+Light area_light(const Geometry &g, uint32_t geom_id, const Rgb &emission, double offset) {
+    Light light = make_area_light(g, geom_id, emission);
+    light.set_surface_offset(offset);
+    light.set_geometry(geom_id);
+    return light;
 }
 
 } // namespace
@@ -104,8 +120,10 @@ void RenderScene::shade(const ppm_ray &ray, SurfacePoint &out) const {
     } else {
         out.bsdf = material.bsdf;
     }
+    // Emitted on the side of the shading normal, the normal a light samples with (light.h);
+    // the same as the geometric one except on meshes with vertex normals.
     const Rgb &emission = geometry_emission_[out.hit.geom_id];
-    out.emitted = (!emission.is_black() && dot(out.ng, wo) > 0) ? emission : Rgb();
+    out.emitted = (!emission.is_black() && out.wo_local.z > 0) ? emission : Rgb();
 }
 
 } // namespace ppm

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // What the renderer reads of a committed scene, gathered once when a renderer is created:
-// the lights (point and spot lights plus one area light per emitting quad or sphere) with
+// the lights (point and spot lights plus one area light per emitting geometry) with
 // the probabilities photons pick them by, and a material for every geometry.
 #pragma once
 

@@ -69,6 +69,9 @@ public:
     // The caller's tag for the geometry, reported in every hit (ppm_hit::material); the scene
     // does not interpret it (the renderer looks its material up by it).
     uint32_t material = 0;
+    // Mitsuba's `flip_normals`: every hit reports -ng and -ns (the scene negates what
+    // describe_hit wrote), and an area light on the geometry emits on the other side.
+    bool flip_normals = false;
 };
 
 // Pads a box so Embree's single-precision traversal keeps it (see EmbreeFrame). Every bounds

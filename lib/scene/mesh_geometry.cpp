@@ -54,15 +54,15 @@ Box3 MeshGeometry::world_bounds(const Affine &transform) const {
 }
 
 Box3 MeshGeometry::prepare(const Affine &transform) {
-    world_ = source_;
+    world_ = std::make_shared<MeshData>(source_);
     Box3 bounds;
     magnitude_ = 0;
-    for (Vec3 &p : world_.positions) {
+    for (Vec3 &p : world_->positions) {
         p = transform.point(p);
         bounds.extend(p);
         magnitude_ = std::max(magnitude_, max_abs_component(p));
     }
-    for (Vec3 &n : world_.normals) {
+    for (Vec3 &n : world_->normals) {
         n = transform.normal(n);
         const double len = length(n);
         if (len > 0) n = n / len;
@@ -71,24 +71,25 @@ Box3 MeshGeometry::prepare(const Affine &transform) {
 }
 
 RTCGeometry MeshGeometry::create_embree(RTCDevice device, const EmbreeFrame &frame) {
+    const MeshData &world = *world_;
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     if (!geometry) return nullptr;
     float *vertices = static_cast<float *>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), world_.positions.size()));
+        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), world.positions.size()));
     unsigned *indices = static_cast<unsigned *>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), world_.indices.size() / 3));
+        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), world.indices.size() / 3));
     if (!vertices || !indices) {
         rtcReleaseGeometry(geometry);
         return nullptr;
     }
-    for (size_t k = 0; k < world_.positions.size(); ++k) {
-        const Vec3 p = world_.positions[k] - frame.center;
+    for (size_t k = 0; k < world.positions.size(); ++k) {
+        const Vec3 p = world.positions[k] - frame.center;
         vertices[3 * k] = static_cast<float>(p.x);
         vertices[3 * k + 1] = static_cast<float>(p.y);
         vertices[3 * k + 2] = static_cast<float>(p.z);
     }
-    std::copy(world_.indices.begin(), world_.indices.end(), indices);
-    rtcSetGeometryUserData(geometry, &world_);
+    std::copy(world.indices.begin(), world.indices.end(), indices);
+    rtcSetGeometryUserData(geometry, world_.get());
     rtcSetGeometryIntersectFilterFunction(geometry, mesh_filter);
     rtcSetGeometryOccludedFilterFunction(geometry, mesh_filter);
     rtcCommitGeometry(geometry);
@@ -97,14 +98,15 @@ RTCGeometry MeshGeometry::create_embree(RTCDevice device, const EmbreeFrame &fra
 
 void MeshGeometry::describe_hit(const RayQuery &query, double tolerance, ppm_hit &hit) const {
     const unsigned prim = query.hit.prim_id;
-    const uint32_t i0 = world_.indices[3 * prim], i1 = world_.indices[3 * prim + 1], i2 = world_.indices[3 * prim + 2];
+    const uint32_t i0 = world_->indices[3 * prim], i1 = world_->indices[3 * prim + 1],
+                   i2 = world_->indices[3 * prim + 2];
     const double u = query.hit.u, v = query.hit.v, w = 1.0 - u - v;
-    const Vec3 &p0 = world_.positions[i0], &p1 = world_.positions[i1], &p2 = world_.positions[i2];
+    const Vec3 &p0 = world_->positions[i0], &p1 = world_->positions[i1], &p2 = world_->positions[i2];
     const Vec3 p = p0 * w + p1 * u + p2 * v;
     const Vec3 ng = normalize(cross(p1 - p0, p2 - p0));
     Vec3 ns = ng;
-    if (!world_.normals.empty()) {
-        const Vec3 interpolated = world_.normals[i0] * w + world_.normals[i1] * u + world_.normals[i2] * v;
+    if (!world_->normals.empty()) {
+        const Vec3 interpolated = world_->normals[i0] * w + world_->normals[i1] * u + world_->normals[i2] * v;
         if (length(interpolated) > 0) ns = normalize(interpolated);
     }
     p.store(hit.p);
@@ -114,14 +116,14 @@ void MeshGeometry::describe_hit(const RayQuery &query, double tolerance, ppm_hit
 }
 
 void MeshGeometry::texture_coordinates(const ppm_hit &hit, double *s, double *t) const {
-    if (world_.uvs.empty() || hit.prim_id >= primitive_count()) {
+    if (world_->uvs.empty() || hit.prim_id >= primitive_count()) {
         Geometry::texture_coordinates(hit, s, t);
         return;
     }
-    const uint32_t *tri = &world_.indices[3 * hit.prim_id];
+    const uint32_t *tri = &world_->indices[3 * hit.prim_id];
     const double u = hit.u, v = hit.v, w = 1.0 - u - v;
-    *s = world_.uvs[2 * tri[0]] * w + world_.uvs[2 * tri[1]] * u + world_.uvs[2 * tri[2]] * v;
-    *t = world_.uvs[2 * tri[0] + 1] * w + world_.uvs[2 * tri[1] + 1] * u + world_.uvs[2 * tri[2] + 1] * v;
+    *s = world_->uvs[2 * tri[0]] * w + world_->uvs[2 * tri[1]] * u + world_->uvs[2 * tri[2]] * v;
+    *t = world_->uvs[2 * tri[0] + 1] * w + world_->uvs[2 * tri[1] + 1] * u + world_->uvs[2 * tri[2] + 1] * v;
 }
 
 } // namespace ppm

@@ -7,6 +7,7 @@
 #include "scene/geometry.h"
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace ppm {
@@ -24,11 +25,14 @@ public:
     // Interpolated vertex uvs when the mesh has them, else the barycentric (u, v).
     void texture_coordinates(const ppm_hit &hit, double *s, double *t) const override;
 
-    const MeshData &world() const { return world_; }
+    const MeshData &world() const { return *world_; }
+    // The world-space data, shared with whoever keeps it (a mesh light) without a copy; a
+    // later commit makes a new one and leaves this one to its holders.
+    std::shared_ptr<const MeshData> shared_world() const { return world_; }
 
 private:
     MeshData source_;
-    MeshData world_;
+    std::shared_ptr<MeshData> world_ = std::make_shared<MeshData>();
     double magnitude_ = 0;
 };
 

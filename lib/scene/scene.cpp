@@ -350,6 +350,11 @@ void Scene::finish_intersect(const RayQuery &query, ppm_hit &hit, bool surface_u
     hit.prim_id = query.hit.prim_id;
     hit.material = g.material;
     g.describe_hit(query, frame_.tolerance, hit);
+    if (g.flip_normals)
+        for (int k = 0; k < 3; ++k) {
+            hit.ng[k] = -hit.ng[k];
+            hit.ns[k] = -hit.ns[k];
+        }
     if (surface_uv) g.compute_uv(hit);
 }
 

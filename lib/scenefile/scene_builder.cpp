@@ -3,12 +3,14 @@
 
 #include "core/error.h"
 #include "geometry/cube_mesh.h"
+#include "math/frame.h"
 #include "scenefile/scene_params.h"
 #include "scenefile/transform.h"
 
 #include <sys/stat.h>
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 namespace ppm {
@@ -205,11 +207,12 @@ std::uint32_t SceneBuilder::shape_material(const JsonNode &shape) {
 
 void SceneBuilder::add_shape(const JsonNode &shape) {
     shape.require_object();
-    const std::string type =
-        shape.at("type").one_of({"sphere", "rectangle", "quad", "cube", "obj", "ply", "serialized", "bezier"});
+    const std::string type = shape.at("type").one_of(
+        {"sphere", "rectangle", "quad", "disk", "cylinder", "cube", "obj", "ply", "serialized", "bezier"});
     const Affine to_world = shape.has("to_world") ? parse_transform(shape.at("to_world")) : Affine{};
     // Transforms that the shape cannot take in its own parameters go to the geometry.
     bool transform_geometry = !is_identity(to_world);
+    bool mirrored_normal = false; // the shape's normal must be flipped to be Mitsuba's
     std::uint32_t geom = 0;
 
     if (type == "sphere") {
@@ -219,9 +222,9 @@ void SceneBuilder::add_shape(const JsonNode &shape) {
         check(shape, ppm_scene_add_sphere(scene_, center.data(), radius, &geom));
     } else if (type == "rectangle" || type == "quad") {
         if (type == "rectangle") {
-            shape.allow_only({"type", "bsdf", "emitter", "to_world"});
+            shape.allow_only({"type", "bsdf", "emitter", "to_world", "flip_normals"});
         } else {
-            shape.allow_only({"type", "bsdf", "emitter", "to_world", "origin", "edge_u", "edge_v"});
+            shape.allow_only({"type", "bsdf", "emitter", "to_world", "flip_normals", "origin", "edge_u", "edge_v"});
         }
         // Mitsuba's rectangle is [-1, 1]^2 at z = 0 with normal +z.
         const Vec3 origin = type == "rectangle" ? Vec3{-1, -1, 0} : Vec3::from(shape.at("origin").vec3().data());
@@ -231,8 +234,40 @@ void SceneBuilder::add_shape(const JsonNode &shape) {
                                     v = to_array(to_world.vector(edge_v));
         check(shape, ppm_scene_add_quad(scene_, o.data(), u.data(), v.data(), &geom));
         transform_geometry = false;
+    } else if (type == "disk") {
+        // Mitsuba's disk: the unit disk at z = 0 with normal +z, placed by to_world.
+        shape.allow_only({"type", "bsdf", "emitter", "to_world", "flip_normals"});
+        const std::array<double, 3> c = to_array(to_world.point({0, 0, 0})), u = to_array(to_world.vector({1, 0, 0})),
+                                    v = to_array(to_world.vector({0, 1, 0}));
+        check(shape, ppm_scene_add_disk(scene_, c.data(), u.data(), v.data(), &geom));
+        transform_geometry = false;
+        // Mitsuba's normal is to_world's inverse transpose applied to +z, which is
+        // (x axis) x (y axis) / det: reversed by a mirroring to_world.
+        mirrored_normal = to_world.determinant() < 0;
+    } else if (type == "cylinder") {
+        // Mitsuba's cylinder: p0 (0, 0, 0), p1 (0, 0, 1), radius 1, then to_world; the tube
+        // must stay circular in the world (to_world may stretch along the axis only).
+        shape.allow_only({"type", "bsdf", "emitter", "to_world", "flip_normals", "p0", "p1", "radius"});
+        const Vec3 p0 = Vec3::from(shape.vec3_or("p0", {0, 0, 0}).data());
+        const Vec3 p1 = Vec3::from(shape.vec3_or("p1", {0, 0, 1}).data());
+        const double radius = shape.has("radius") ? shape.at("radius").positive() : 1.0;
+        if (!(length(p1 - p0) > 0)) shape.fail("cylinder p0 and p1 are equal: the cylinder has no length");
+        Vec3 e1, e2;
+        orthonormal_basis(normalize(p1 - p0), e1, e2);
+        const Vec3 w0 = to_world.point(p0), w1 = to_world.point(p1);
+        const Vec3 x = to_world.vector(e1 * radius), y = to_world.vector(e2 * radius), axis = w1 - w0;
+        const double lx = length(x), ly = length(y), la = length(axis);
+        const double eps = 1e-6;
+        if (std::fabs(lx - ly) > eps * lx || std::fabs(dot(x, y)) > eps * lx * ly ||
+            std::fabs(dot(x, axis)) > eps * lx * la || std::fabs(dot(y, axis)) > eps * ly * la)
+            shape.at("to_world")
+                .fail("a cylinder's to_world must keep it circular: no shear or non-uniform "
+                      "scaling across its axis");
+        const std::array<double, 3> a = to_array(w0), b = to_array(w1);
+        check(shape, ppm_scene_add_cylinder(scene_, a.data(), b.data(), lx, &geom));
+        transform_geometry = false;
     } else if (type == "cube") {
-        shape.allow_only({"type", "bsdf", "emitter", "to_world"});
+        shape.allow_only({"type", "bsdf", "emitter", "to_world", "flip_normals"});
         const MeshData cube = cube_mesh();
         std::vector<double> positions, normals;
         for (std::size_t i = 0; i < cube.positions.size(); ++i)
@@ -243,13 +278,13 @@ void SceneBuilder::add_shape(const JsonNode &shape) {
         check(shape, ppm_scene_add_triangle_mesh(scene_, positions.data(), cube.positions.size(), cube.indices.data(),
                                                  cube.indices.size() / 3, normals.data(), cube.uvs.data(), &geom));
     } else if (type == "obj" || type == "ply") {
-        shape.allow_only({"type", "bsdf", "emitter", "to_world", "filename"});
+        shape.allow_only({"type", "bsdf", "emitter", "to_world", "flip_normals", "filename"});
         const JsonNode filename = shape.at("filename");
         const std::string path = existing_file(filename);
         check(filename, type == "obj" ? ppm_scene_load_obj(scene_, path.c_str(), &geom)
                                       : ppm_scene_load_ply(scene_, path.c_str(), &geom));
     } else if (type == "serialized") {
-        shape.allow_only({"type", "bsdf", "emitter", "to_world", "filename", "shape_index"});
+        shape.allow_only({"type", "bsdf", "emitter", "to_world", "flip_normals", "filename", "shape_index"});
         const JsonNode filename = shape.at("filename");
         const std::int64_t index = shape.has("shape_index") ? shape.at("shape_index").integer(0, 0xFFFFFFFF) : 0;
         check(filename, ppm_scene_load_serialized(scene_, existing_file(filename).c_str(),
@@ -295,6 +330,8 @@ void SceneBuilder::add_shape(const JsonNode &shape) {
         const std::array<double, 16> matrix = matrix16(to_world);
         check(shape.at("to_world"), ppm_scene_set_geometry_transform(scene_, geom, matrix.data()));
     }
+    const bool flip = shape.has("flip_normals") && shape.at("flip_normals").boolean();
+    if (flip != mirrored_normal) check(shape, ppm_scene_set_geometry_flip_normals(scene_, geom, 1));
     check(shape, ppm_scene_set_geometry_material(scene_, geom, shape_material(shape)));
     if (shape.has("emitter")) {
         const JsonNode emitter = shape.at("emitter");

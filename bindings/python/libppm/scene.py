@@ -164,6 +164,30 @@ class Scene(Handle):
             self._core_object.add_quad(vector(origin, "origin"), vector(edge_u, "edge_u"),
                                        vector(edge_v, "edge_v")), material)
 
+    def add_disk(self, center: ArrayLike = (0, 0, 0), axis_u: ArrayLike = (1, 0, 0),
+                 axis_v: ArrayLike = (0, 1, 0), material: Optional[int] = None) -> int:
+        """Adds the disk ``center + x*axis_u + y*axis_v``, x^2 + y^2 <= 1 (Mitsuba's ``disk``).
+
+        Geometric normal ``axis_u x axis_v``; hit (u, v) = (r, phi / 2pi).
+        """
+        return self._with_material(
+            self._core_object.add_disk(vector(center, "center"), vector(axis_u, "axis_u"),
+                                       vector(axis_v, "axis_v")), material)
+
+    def add_cylinder(self, p0: ArrayLike = (0, 0, 0), p1: ArrayLike = (0, 0, 1), radius: float = 1.0,
+                     material: Optional[int] = None) -> int:
+        """Adds the open tube of ``radius`` around p0 -> p1 (Mitsuba's ``cylinder``, no caps).
+
+        Normals point away from the axis; hit (u, v) = (phi / 2pi, height / length).
+        """
+        return self._with_material(
+            self._core_object.add_cylinder(vector(p0, "p0"), vector(p1, "p1"), float(radius)), material)
+
+    def set_flip_normals(self, geom_id: int, flip: bool = True) -> None:
+        """Mitsuba's ``flip_normals``: hits report the opposite normal and an area light on the
+        geometry emits on the other side (meshes, quads, disks, cylinders)."""
+        self._core_object.set_geometry_flip_normals(uint32(geom_id, "geom_id"), bool(flip))
+
     def add_mesh(self, positions: ArrayLike, indices: ArrayLike,
                  normals: Optional[ArrayLike] = None, uvs: Optional[ArrayLike] = None,
                  material: Optional[int] = None) -> int:
@@ -308,8 +332,9 @@ class Scene(Handle):
             float(cutoff_angle), float(beam_width))
 
     def set_emission(self, geom_id: int, radiance: ColorLike) -> None:
-        """Makes a quad or sphere an area light of constant ``radiance`` (W/(m^2 sr)) on the
-        side its normal points to; black turns it off."""
+        """Makes a quad, sphere, disk, cylinder or triangle mesh an area light of constant
+        ``radiance`` (W/(m^2 sr)) on the side its normal points to (a mesh's shading normal);
+        black turns it off. Bezier patches cannot be area lights."""
         self._core_object.set_geometry_emission(uint32(geom_id, "geom_id"),
                                                 color(radiance, "radiance"))
 

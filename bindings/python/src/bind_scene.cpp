@@ -96,6 +96,16 @@ void bind_scene(nb::module_ &m) {
         return new_id(
             [&](uint32_t *id) { return ppm_scene_add_quad(s.get(), origin.data(), edge_u.data(), edge_v.data(), id); });
     });
+    cls.def("add_disk", [](Scene &s, const Vec3 &center, const Vec3 &axis_u, const Vec3 &axis_v) {
+        return new_id(
+            [&](uint32_t *id) { return ppm_scene_add_disk(s.get(), center.data(), axis_u.data(), axis_v.data(), id); });
+    });
+    cls.def("add_cylinder", [](Scene &s, const Vec3 &p0, const Vec3 &p1, double radius) {
+        return new_id([&](uint32_t *id) { return ppm_scene_add_cylinder(s.get(), p0.data(), p1.data(), radius, id); });
+    });
+    cls.def("set_geometry_flip_normals", [](Scene &s, uint32_t geom_id, bool flip) {
+        check(ppm_scene_set_geometry_flip_normals(s.get(), geom_id, flip ? 1 : 0));
+    });
     cls.def(
         "add_triangle_mesh",
         [](Scene &s, const Doubles &positions, const Indices &indices, std::optional<Doubles> normals,

@@ -85,8 +85,9 @@ def test_material_and_light_values_are_checked(scene):
     assert scene.add_spot_light((0, 0, 1), (0, 0, 0), (1, 2, 3)) == 0
     assert scene.add_point_light((0, 0, 1), 1.0) == 1
     mesh = scene.add_mesh([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
-    with pytest.raises(libppm.InvalidArgumentError):
-        scene.set_emission(mesh, 1.0)
+    scene.set_emission(mesh, 1.0)  # meshes are area lights too
+    with pytest.raises(libppm.InvalidArgumentError, match="radiance"):
+        scene.set_emission(mesh, -1.0)
     quad = scene.add_quad((0, 0, 0), (1, 0, 0), (0, 1, 0))
     with pytest.raises(libppm.InvalidArgumentError):
         scene.set_emission(quad, -1.0)
