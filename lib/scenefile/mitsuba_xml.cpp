@@ -456,10 +456,6 @@ private:
                 const std::string name = required(child, source, "name");
                 if (out.isMember(name)) error(child, source, "the parameter '" + name + "' is given twice");
                 out[name] = property(child, source, tag == "emitter");
-                // A file a shape or texture reads is named relative to the XML file that names
-                // it, as an <include> is (the builder gets only resolved names).
-                if (name == "filename" && kind == "string")
-                    out[name] = located(Json::Value(resolve(source, out[name].asString())), child, source);
             } else if (kind == "transform") {
                 check_attributes(child, source, {"name"});
                 out[required(child, source, "name")] = transform(child, source);
