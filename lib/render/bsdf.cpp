@@ -135,9 +135,9 @@ bool Bsdf::gathers(double gather_alpha) const {
     return false;
 }
 
-double Bsdf::gather_probability(const Vec3 &wo, double gather_alpha) const {
-    if (!gathers(gather_alpha)) return 0.0;
-    return type_ == Type::Coated ? 1.0 - specular_probability(wo) : 1.0;
+double Bsdf::continue_probability(const Vec3 &wo, double gather_alpha) const {
+    if (!gathers(gather_alpha)) return 1.0;
+    return type_ == Type::Coated ? specular_probability(wo) : 0.0;
 }
 
 BsdfSample Bsdf::sample(const Vec3 &wo, double u_lobe, double u1, double u2, TransportMode mode) const {

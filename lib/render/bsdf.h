@@ -87,6 +87,8 @@ public:
         return coat_ ? factor_ * (1.0 - fresnel_dielectric(cos_wi, eta_)) : factor_;
     }
     bool needs_full_eval() const { return full_; }
+    // The weight given to Bsdf::fixed_wo, for needs_full_eval() lobes.
+    const Rgb &weight() const { return factor_; }
 
 private:
     friend class Bsdf;
@@ -165,12 +167,19 @@ public:
     //
     // Whether visible points (and photons) can be stored at this material at all.
     bool gathers(double gather_alpha) const;
-    // The probability of stopping at a visible point for this wo: the integrator stops when
-    // u_lobe >= 1 - gather_probability and otherwise calls sample() with the same u_lobe,
-    // which then picks a continued lobe (the coat's reflection, or the one rough lobe).
-    // The visible point's weight is divided by gather_probability; sample()'s weight already
-    // accounts for its lobe choice.
-    double gather_probability(const Vec3 &wo, double gather_alpha) const;
+    // Whether a visible point here evaluates the whole BSDF per photon (its fixed_wo() lobe
+    // needs_full_eval): a rough lobe depends on all of wi, not on cos(wi) alone.
+    bool needs_full_eval() const { return type_ == Type::RoughConductor; }
+    // The probability of stopping at a visible point for this wo, and its complement, the
+    // probability of continuing: the integrator stops when u_lobe >= continue_probability
+    // and otherwise calls sample() with the same u_lobe, which then picks a continued lobe
+    // (the coat's reflection, or the one rough lobe of a narrow conductor). The visible
+    // point's weight is divided by gather_probability; sample()'s weight already accounts for
+    // its lobe choice.
+    double gather_probability(const Vec3 &wo, double gather_alpha) const {
+        return 1.0 - continue_probability(wo, gather_alpha);
+    }
+    double continue_probability(const Vec3 &wo, double gather_alpha) const;
 
     // Samples wi given wo, from uniform numbers in [0, 1): u_lobe picks the lobe, (u1, u2) the
     // direction. Returns pdf == 0 (invalid) when nothing scatters.
