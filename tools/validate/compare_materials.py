@@ -12,7 +12,10 @@ JSON format, docs/scene-format.md), so other materials can be added beside the c
 Usage (Mitsuba: /tmp/mitsuba-venv/bin/python, or any Python with mitsuba and numpy):
   compare_materials.py [--only NAME ...] [--passes 256] [--photons 100000] [--spp 512]
                        [--size 64] [--keep DIR] [--ppm-render PATH]
-Not run by CI (Mitsuba is a big download); the figures are quoted in the report/docs.
+Not run by CI (Mitsuba is a big download); the figures are in docs/how-it-works.md
+("Glossy visible points"), e.g.
+  compare_materials.py --only roughconductor-Al-ggx-0.3 --passes 128 --photons 100000 --spp 256
+  roughconductor-Al-ggx-0.3: image ratio [0.9998, 0.9998, 0.9998], sphere ratio [0.9967, ...]
 """
 import argparse
 import json
