@@ -642,8 +642,12 @@ PPM_API void ppm_renderer_release(ppm_renderer renderer);
  *   "seed"                  int    random sequence                            default 0
  *   "hit_point_search"      string "grid" (hashed) or "kdtree" (nanoflann)    default "grid"
  *   "direct_lighting"       int    1: light sources by shadow rays; 0: by photons default 1
- * Typed settings as described at the top of this header. mode, seed, direct_lighting and
- * the initial radius settings are fixed after the first pass (INVALID_OPERATION), in "pppm"
+ *   "glossy_gather_alpha"   double rough lobes with alpha >= this are gathered at
+ *                           visible points, narrower ones followed like mirrors, >= 0
+ *                                                                              default 0.2
+ * Typed settings as described at the top of this header. mode, seed, direct_lighting,
+ * glossy_gather_alpha and the initial radius settings are fixed after the first pass
+ * (INVALID_OPERATION), in "pppm"
  * mode photons_per_pass, alpha and max_depth too; unknown
  * keys, wrong types and values out of range are INVALID_ARGUMENT. Read-only ints: "passes",
  * "photons_emitted", "width", "height", "lights" (the light sources photons leave: point,

@@ -6,6 +6,8 @@
 
 #include "api/api_params.h"
 #include "api/api_support.h"
+#include "core/suggest.h"
+#include "render/conductor_table.h"
 
 #include <string>
 #include <vector>
@@ -49,11 +51,62 @@ uint32_t add_diffuse(ppm_scene_t &scene, Params &p) {
     return add(scene, Bsdf::diffuse(c.value), c);
 }
 
+// The complex index of refraction of a conductor, as Mitsuba's conductor.cpp reads it: a
+// named `material` (Mitsuba's table, render/conductor_table.h) or `eta` and `k`; "none" (the
+// default) is eta 0, k 1: F = 1, a perfect mirror. Giving both is an error, as in Mitsuba.
+struct ConductorIndex {
+    Rgb eta, k;
+    bool perfect = false; // material "none" without eta/k: the exact mirror
+};
+
+ConductorIndex conductor_index(Params &p) {
+    const std::string material = p.string("material", "none");
+    if (material != "none") {
+        if (p.has("eta") || p.has("k")) p.fail("material", "and eta/k cannot both be given (give one or the other)");
+        p.color("eta", Rgb(0)), p.color("k", Rgb(1)); // read, so that finish() knows them
+        const ppm::ConductorIor *c = ppm::find_conductor(material.c_str());
+        if (!c)
+            p.fail("material", "'" + material + "' is not a known conductor" +
+                                   ppm::did_you_mean(material, ppm::conductor_names()) +
+                                   " (Mitsuba 3's names, e.g. Ag, Al, Au, Cr, Cu, or \"none\")");
+        return {c->eta, c->k, false};
+    }
+    const bool given = p.has("eta") || p.has("k");
+    const Rgb eta = p.color("eta", Rgb(0)), k = p.color("k", Rgb(1));
+    return {eta, k, !given};
+}
+
 uint32_t add_conductor(ppm_scene_t &scene, Params &p) {
     const ColorOrTexture c = reflectance_or_texture(scene, p, "specular_reflectance", Rgb(1));
-    p.choice("material", {"none"}, "none");
+    const ConductorIndex ior = conductor_index(p);
     p.finish();
-    return add(scene, Bsdf::mirror(c.value), c);
+    return add(scene, ior.perfect ? Bsdf::mirror(c.value) : Bsdf::conductor(ior.eta, ior.k, c.value), c);
+}
+
+// Mitsuba's roughconductor (src/bsdfs/roughconductor.cpp and MicrofacetDistribution's
+// constructor): distribution "beckmann" (default) or "ggx", `alpha` (0.1) or both `alpha_u`
+// and `alpha_v`, `sample_visible` (true).
+uint32_t add_roughconductor(ppm_scene_t &scene, Params &p) {
+    const ColorOrTexture c = reflectance_or_texture(scene, p, "specular_reflectance", Rgb(1));
+    const ConductorIndex ior = conductor_index(p);
+    const std::string distribution = p.choice("distribution", {"beckmann", "ggx"}, "beckmann");
+    double alpha_u = 0.1, alpha_v = 0.1;
+    if (p.has("alpha_u") || p.has("alpha_v")) {
+        if (p.has("alpha")) p.fail("alpha", "and alpha_u/alpha_v cannot both be given");
+        if (!p.has("alpha_u") || !p.has("alpha_v"))
+            p.fail(p.has("alpha_u") ? "alpha_v" : "alpha_u", "is needed too: give both alpha_u and alpha_v");
+        alpha_u = p.positive("alpha_u", 0.1);
+        alpha_v = p.positive("alpha_v", 0.1);
+        p.number("alpha", 0.1);
+    } else {
+        alpha_u = alpha_v = p.positive("alpha", 0.1);
+        p.number("alpha_u", 0.1), p.number("alpha_v", 0.1);
+    }
+    const bool sample_visible = p.boolean("sample_visible", true);
+    p.finish();
+    ppm::MicrofacetType type = ppm::MicrofacetType::Beckmann;
+    ppm::parse_microfacet_type(distribution.c_str(), &type);
+    return add(scene, Bsdf::rough_conductor(type, alpha_u, alpha_v, ior.eta, ior.k, c.value, sample_visible), c);
 }
 
 uint32_t add_dielectric(ppm_scene_t &scene, Params &p) {
@@ -85,8 +138,8 @@ struct MaterialType {
 };
 
 const MaterialType kMaterialTypes[] = {
-    {"diffuse", add_diffuse}, {"conductor", add_conductor}, {"dielectric", add_dielectric},
-    {"plastic", add_plastic}, {"twosided", add_twosided},
+    {"diffuse", add_diffuse},       {"conductor", add_conductor}, {"roughconductor", add_roughconductor},
+    {"dielectric", add_dielectric}, {"plastic", add_plastic},     {"twosided", add_twosided},
 };
 
 } // namespace

@@ -2,6 +2,7 @@
 #include "render/bsdf.h"
 
 #include "core/error.h"
+#include "render/fresnel.h"
 #include "render/warp.h"
 
 #include <algorithm>
@@ -114,10 +115,29 @@ double Bsdf::specular_probability(const Vec3 &wo) const {
     switch (type_) {
     case Type::Diffuse: return 0.0;
     case Type::Mirror:
+    case Type::Conductor:
     case Type::Dielectric: return 1.0;
     case Type::Coated: return coat_specular_probability(fresnel_dielectric(std::fabs(wo.z), eta_));
+    case Type::RoughConductor: return 0.0;
     }
     return 0.0;
+}
+
+bool Bsdf::gathers(double gather_alpha) const {
+    switch (type_) {
+    case Type::Diffuse:
+    case Type::Coated: return true;
+    case Type::RoughConductor: return std::min(distribution_.alpha_u(), distribution_.alpha_v()) >= gather_alpha;
+    case Type::Mirror:
+    case Type::Conductor:
+    case Type::Dielectric: return false;
+    }
+    return false;
+}
+
+double Bsdf::continue_probability(const Vec3 &wo, double gather_alpha) const {
+    if (!gathers(gather_alpha)) return 1.0;
+    return type_ == Type::Coated ? specular_probability(wo) : 0.0;
 }
 
 BsdfSample Bsdf::sample(const Vec3 &wo, double u_lobe, double u1, double u2, TransportMode mode) const {
@@ -157,6 +177,13 @@ BsdfSample Bsdf::sample(const Vec3 &wo, double u_lobe, double u1, double u2, Tra
         s.is_specular = true;
         s.weight = reflectance_;
         break;
+    case Type::Conductor:
+        s.wi = reflect_local(w);
+        s.pdf = 1.0;
+        s.is_specular = true;
+        s.weight = reflectance_ * fresnel_conductor(w.z, conductor_eta_, conductor_k_);
+        break;
+    case Type::RoughConductor: s = sample_rough_conductor(w, u1, u2); break;
     case Type::Coated: {
         const double fresnel_o = fresnel_dielectric(w.z, eta_);
         const double p_specular = coat_specular_probability(fresnel_o);
@@ -190,7 +217,10 @@ Rgb Bsdf::eval(const Vec3 &wo, const Vec3 &wi) const {
         const double fresnel_i = fresnel_dielectric(std::fabs(wi.z), eta_);
         return reflectance_ * (coat_diffuse_scale_ * (1.0 - fresnel_o) * (1.0 - fresnel_i) * kInvPi);
     }
+    case Type::RoughConductor:
+        return wo.z > 0 ? eval_rough_conductor(wo, wi) : eval_rough_conductor(flip_z(wo), flip_z(wi));
     case Type::Mirror:
+    case Type::Conductor:
     case Type::Dielectric: break;
     }
     return Rgb();
@@ -207,7 +237,12 @@ FixedWoLobe Bsdf::fixed_wo(const Vec3 &wo, const Rgb &weight) const {
         lobe.eta_ = eta_;
         lobe.coat_ = true;
         break;
+    case Type::RoughConductor:
+        lobe.factor_ = weight;
+        lobe.full_ = true;
+        break;
     case Type::Mirror:
+    case Type::Conductor:
     case Type::Dielectric: break;
     }
     return lobe;
@@ -219,7 +254,10 @@ double Bsdf::pdf(const Vec3 &wo, const Vec3 &wi) const {
     switch (type_) {
     case Type::Diffuse: return cosine_pdf;
     case Type::Coated: return (1.0 - coat_specular_probability(fresnel_dielectric(std::fabs(wo.z), eta_))) * cosine_pdf;
+    case Type::RoughConductor:
+        return wo.z > 0 ? pdf_rough_conductor(wo, wi) : pdf_rough_conductor(flip_z(wo), flip_z(wi));
     case Type::Mirror:
+    case Type::Conductor:
     case Type::Dielectric: break;
     }
     return 0.0;

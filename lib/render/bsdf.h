@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
-// Surface scattering: Lambertian diffuse, perfect mirror, smooth dielectric (glass) and a
-// smooth dielectric coat over a diffuse base (glazed porcelain, Mitsuba's `plastic`).
+// Surface scattering: Lambertian diffuse, perfect mirror, smooth dielectric (glass), a
+// smooth dielectric coat over a diffuse base (glazed porcelain, Mitsuba's `plastic`), and
+// smooth and rough conductors (metals with a complex index of refraction, Mitsuba's
+// `conductor` and `roughconductor`; the rough one on a microfacet distribution,
+// render/microfacet.h, its math in bsdf_conductor.cpp).
 //
 // A Bsdf is a small value type (a tag plus a few numbers, no virtual calls): the integrator
 // copies one per hit. Every direction is in the local shading frame (math/frame.h: z is the
@@ -22,13 +25,15 @@
 //
 // Sides: the opaque materials (diffuse, mirror, coated) are two-sided, like Mitsuba's
 // `twosided` adapter: the model is evaluated on the side of wo (the shading normal is
-// flipped to wo's side), and wi on the other side gets nothing. Glass uses the sign of
+// flipped to wo's side), and wi on the other side gets nothing. The conductors are two-sided
+// the same way (Mitsuba's are one-sided; wrap them in `twosided` there to compare). Glass uses the sign of
 // cos(wo) = wo.z: wo.z > 0 is outside (ext_ior), wo.z < 0 inside (int_ior), so a glass
 // surface's normal must point outwards. wo.z == 0 scatters nothing.
 #pragma once
 
 #include "math/rgb.h"
 #include "math/vec3.h"
+#include "render/microfacet.h"
 
 #include <cstdint>
 
@@ -68,26 +73,34 @@ inline double fresnel_dielectric(double cos_i, double eta) {
 double fresnel_diffuse_reflectance(double eta);
 
 // eval() at one wo for many wi (the photons landing at a visible point), with what depends
-// on wo alone computed once: eval(wo, wi) = at(wi.z) * sign-matched, see Bsdf::fixed_wo.
+// on wo alone computed once. The diffuse and coated lobes depend on cos(wi) only and are
+// evaluated by at(); lobes that depend on the whole of wi (rough conductors) are marked
+// needs_full_eval() and the caller evaluates weight * Bsdf::eval(wo, wi) itself (the density
+// estimator keeps the Bsdf, frame and wo of such points aside).
 class FixedWoLobe {
 public:
     // f(wo, wi) times `weight` (given to Bsdf::fixed_wo) for cos_wi = wi.z taken on wo's side
-    // of the shading normal (wi.z * sign(wo.z)); zero when wi is on the other side.
+    // of the shading normal (wi.z * sign(wo.z)); zero when wi is on the other side. Not for
+    // needs_full_eval() lobes.
     Rgb at(double cos_wi) const {
         if (!(cos_wi > 0)) return Rgb();
         return coat_ ? factor_ * (1.0 - fresnel_dielectric(cos_wi, eta_)) : factor_;
     }
+    bool needs_full_eval() const { return full_; }
+    // The weight given to Bsdf::fixed_wo, for needs_full_eval() lobes.
+    const Rgb &weight() const { return factor_; }
 
 private:
     friend class Bsdf;
     Rgb factor_; // weight f without the coat's (1 - F(cos wi)) factor
     double eta_ = 1;
     bool coat_ = false;
+    bool full_ = false;
 };
 
 class Bsdf {
 public:
-    enum class Type : uint8_t { Diffuse, Mirror, Dielectric, Coated };
+    enum class Type : uint8_t { Diffuse, Mirror, Dielectric, Coated, Conductor, RoughConductor };
 
     // Black diffuse: scatters nothing (a placeholder that needs no validation).
     Bsdf() = default;
@@ -108,20 +121,65 @@ public:
     // albedo(wo) = F + (1 - F) R_d <= 1 and f is symmetric. Mitsuba approximates Fdr by a
     // fitted polynomial; we integrate it (f differs from Mitsuba 3.9.1 by 0.12 % at eta 1.5).
     static Bsdf coated(const Rgb &diffuse_reflectance, double int_ior, double ext_ior);
+    // Mitsuba 3 `conductor` (src/bsdfs/conductor.cpp): a smooth metal reflecting
+    // specular_reflectance * F(cos wo) with F the unpolarised Fresnel reflectance of the
+    // complex index eta + i k (render/fresnel.h). eta, k finite and >= 0 per channel. (With
+    // Mitsuba's default material "none", eta 0 and k 1, F = 1: use mirror().)
+    static Bsdf conductor(const Rgb &eta, const Rgb &k, const Rgb &specular_reflectance);
+    // Mitsuba 3 `roughconductor` (src/bsdfs/roughconductor.cpp): the Torrance-Sparrow
+    // microfacet model f = R F(wo.h) D(h) G(wo, wi, h) / (4 cos wo cos wi), h the half
+    // vector, sampled through the distribution of visible normals (or all normals with
+    // sample_visible = false). alpha_u, alpha_v finite and > 0.
+    static Bsdf rough_conductor(MicrofacetType distribution, double alpha_u, double alpha_v, const Rgb &eta,
+                                const Rgb &k, const Rgb &specular_reflectance, bool sample_visible = true);
 
     // The same material with another base/specular colour (e.g. from a texture), without
     // revalidating or recomputing the coat's Fdr. Components must lie in [0, 1].
     Bsdf with_reflectance(const Rgb &reflectance) const;
 
     Type type() const { return type_; }
-    // Whether eval()/pdf() can be non-zero (where photons can be gathered).
-    bool has_non_specular() const { return type_ == Type::Diffuse || type_ == Type::Coated; }
+    // Whether eval()/pdf() can be non-zero.
+    bool has_non_specular() const {
+        return type_ == Type::Diffuse || type_ == Type::Coated || type_ == Type::RoughConductor;
+    }
     const Rgb &reflectance() const { return reflectance_; }
     double eta() const { return eta_; } // int_ior / ext_ior
+    const Rgb &conductor_eta() const { return conductor_eta_; }
+    const Rgb &conductor_k() const { return conductor_k_; }
+    const MicrofacetDistribution &distribution() const { return distribution_; }
 
-    // Probability that sample() picks a specular lobe for this wo: 1 for mirror and glass,
-    // 0 for diffuse, the coat's Fresnel-steered share for coated.
+    // Probability that sample() picks a specular lobe for this wo: 1 for mirror, glass and
+    // the smooth conductor, 0 for diffuse and the rough conductor, the coat's Fresnel-steered
+    // share for coated.
     double specular_probability(const Vec3 &wo) const;
+
+    // Visible points (density estimation) versus continued paths. A camera path that meets
+    // this BSDF either stops and stores a visible point, where photons are gathered with
+    // eval() (fixed_wo()), or continues by sampling, like at a mirror. The rule, per lobe:
+    // specular lobes continue; diffuse lobes are gathered; a microfacet lobe of roughness
+    // min(alpha_u, alpha_v) >= gather_alpha (the render setting glossy_gather_alpha) is
+    // gathered, a smoother one continues. Why: the photon estimate at a visible point
+    // averages photons over a disc of radius r, which blurs the reflected image by about
+    // r / distance and adds variance inversely proportional to the lobe's solid angle; both
+    // vanish as r -> 0 (the estimate is consistent) but for a narrow lobe they dominate,
+    // while continuing the path costs one more segment and is unbiased. Emission found after
+    // a continued bounce is counted as after a specular one (no light sampling there).
+    //
+    // Whether visible points (and photons) can be stored at this material at all.
+    bool gathers(double gather_alpha) const;
+    // Whether a visible point here evaluates the whole BSDF per photon (its fixed_wo() lobe
+    // needs_full_eval): a rough lobe depends on all of wi, not on cos(wi) alone.
+    bool needs_full_eval() const { return type_ == Type::RoughConductor; }
+    // The probability of stopping at a visible point for this wo, and its complement, the
+    // probability of continuing: the integrator stops when u_lobe >= continue_probability
+    // and otherwise calls sample() with the same u_lobe, which then picks a continued lobe
+    // (the coat's reflection, or the one rough lobe of a narrow conductor). The visible
+    // point's weight is divided by gather_probability; sample()'s weight already accounts for
+    // its lobe choice.
+    double gather_probability(const Vec3 &wo, double gather_alpha) const {
+        return 1.0 - continue_probability(wo, gather_alpha);
+    }
+    double continue_probability(const Vec3 &wo, double gather_alpha) const;
 
     // Samples wi given wo, from uniform numbers in [0, 1): u_lobe picks the lobe, (u1, u2) the
     // direction. Returns pdf == 0 (invalid) when nothing scatters.
@@ -135,12 +193,18 @@ public:
 
 private:
     double coat_specular_probability(double fresnel_o) const;
+    // The conductors' parts (bsdf_conductor.cpp); w on the side of the shading normal.
+    BsdfSample sample_rough_conductor(const Vec3 &w, double u1, double u2) const;
+    Rgb eval_rough_conductor(const Vec3 &w, const Vec3 &wi) const;
+    double pdf_rough_conductor(const Vec3 &w, const Vec3 &wi) const;
 
     Type type_ = Type::Diffuse;
     Rgb reflectance_;
     double eta_ = 1;
     double coat_diffuse_scale_ = 1;       // 1 / (1 - Fdr)
     double specular_sampling_weight_ = 1; // Mitsuba's s_mean / (s_mean + d_mean)
+    Rgb conductor_eta_, conductor_k_;     // complex index of refraction (conductors)
+    MicrofacetDistribution distribution_; // rough conductor
 };
 
 } // namespace ppm

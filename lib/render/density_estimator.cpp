@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "render/density_estimator.h"
 
+#include "core/error.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -8,13 +10,15 @@
 
 namespace ppm {
 
-void DensityEstimator::reset(std::size_t slots, double flux_scale) {
+void DensityEstimator::reset(std::size_t slots, double flux_scale, bool full_lobes) {
     // The largest arrays first, so that a film too large fails before any memory is filled.
+    std::vector<FullLobe> full(full_lobes ? slots : 0);
     auto flux = std::make_unique<FluxAccumulator>(slots, flux_scale);
     std::vector<GatherPoint> gather(slots);
     std::vector<HitPoint> hit_points(slots, HitPoint{});
     flux_ = std::move(flux);
     gather_ = std::move(gather);
+    full_ = std::move(full);
     hit_points_ = std::move(hit_points);
     present_ = 0;
 }
@@ -33,6 +37,10 @@ void DensityEstimator::store(std::uint32_t slot, const VisiblePoint &vp, double 
         g.shading_normal[a] = static_cast<float>(shading_normal[a]);
     }
     g.lobe = vp.bsdf.fixed_wo(vp.wo_local, vp.weight);
+    if (g.lobe.needs_full_eval()) {
+        if (slot >= full_.size()) fail(PPM_ERROR_INTERNAL, "a rough visible point without room for its lobe");
+        full_[slot] = {vp.frame, vp.wo_local, vp.bsdf};
+    }
 }
 
 void DensityEstimator::build(Context &context, RenderSettings::Search search,
@@ -66,6 +74,13 @@ void DensityEstimator::deposit(const PhotonHit &photon) {
         // A photon arriving from behind the visible point's surface (the far side of a thin
         // wall, the inside of a closed object) does not light it.
         if (GatherPoint::dot(g.normal, photon.direction) >= 0) return;
+        if (g.lobe.needs_full_eval()) {
+            // A rough lobe: the whole BSDF at the photon's direction, wi = -direction.
+            const FullLobe &f = full_[index];
+            flux_->add(index,
+                       photon.flux * g.lobe.weight() * f.bsdf.eval(f.wo_local, f.frame.to_local(-photon.direction)));
+            return;
+        }
         flux_->add(index, photon.flux * g.lobe.at(-GatherPoint::dot(g.shading_normal, photon.direction)));
     };
     if (search_ == RenderSettings::Search::Grid)

@@ -28,7 +28,9 @@ public:
 
     // `slots` absent hit points and zero flux, summed in quanta of flux_scale (FluxAccumulator).
     // Built aside and swapped in: a failed allocation leaves the estimator as it was.
-    void reset(std::size_t slots, double flux_scale);
+    // full_lobes: room for a FullLobe per slot, which visible points on rough lobes need
+    // (RenderScene::gathers_full_lobes).
+    void reset(std::size_t slots, double flux_scale, bool full_lobes = false);
     std::size_t slots() const { return hit_points_.size(); }
 
     // The slot's hit point for this pass with squared radius r2 (absent unless vp.valid).
@@ -56,6 +58,7 @@ public:
 private:
     std::vector<HitPoint> hit_points_; // per slot: position and radius (absent: no point) ...
     std::vector<GatherPoint> gather_;  // ... and what deposit() needs of it
+    std::vector<FullLobe> full_;       // ... and of a rough lobe (empty unless reset asked)
     std::unique_ptr<FluxAccumulator> flux_;
     RenderSettings::Search search_ = RenderSettings::Search::Grid;
     HitPointGrid grid_;

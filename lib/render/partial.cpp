@@ -31,7 +31,7 @@ constexpr std::uint64_t kMaxPixels = std::uint64_t(1) << 28; // the renderer's i
 void put_identity(ByteWriter &w, const RenderIdentity &id) {
     w.put(id.width), w.put(id.height), w.put(id.mode), w.put(id.direct_lighting), w.put(id.seed);
     w.put(id.initial_radius), w.put(id.initial_radius_pixels), w.put(id.alpha), w.put(id.photons_per_pass);
-    w.put(id.max_depth), w.put(std::uint32_t(0)), w.put(id.camera_hash), w.put(id.scene_hash);
+    w.put(id.max_depth), w.put(id.glossy_gather_alpha_bits), w.put(id.camera_hash), w.put(id.scene_hash);
 }
 
 RenderIdentity get_identity(ByteReader &r) {
@@ -42,7 +42,7 @@ RenderIdentity get_identity(ByteReader &r) {
     id.initial_radius = r.get<double>("header"), id.initial_radius_pixels = r.get<double>("header");
     id.alpha = r.get<double>("header"), id.photons_per_pass = r.get<std::uint64_t>("header");
     id.max_depth = r.get<std::uint32_t>("header");
-    r.get<std::uint32_t>("header");
+    id.glossy_gather_alpha_bits = r.get<std::uint32_t>("header");
     id.camera_hash = r.get<std::uint64_t>("header"), id.scene_hash = r.get<std::uint64_t>("header");
     return id;
 }
@@ -59,6 +59,21 @@ std::vector<unsigned char> pack_pixels(const PassSums &sums) {
 }
 
 } // namespace
+
+std::uint32_t glossy_gather_alpha_bits(double value) {
+    if (value == RenderSettings{}.glossy_gather_alpha) return 0;
+    const float f = static_cast<float>(value);
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    return bits == 0 ? 1 : bits; // 0.0 itself: the smallest subnormal, never a real setting
+}
+
+double glossy_gather_alpha(const RenderIdentity &id) {
+    if (id.glossy_gather_alpha_bits == 0) return RenderSettings{}.glossy_gather_alpha;
+    float f;
+    std::memcpy(&f, &id.glossy_gather_alpha_bits, sizeof f);
+    return f;
+}
 
 std::string RenderIdentity::difference(const RenderIdentity &o) const {
     const auto text = [](const char *what, const std::string &ours, const std::string &theirs) {
@@ -79,6 +94,9 @@ std::string RenderIdentity::difference(const RenderIdentity &o) const {
     if (photons_per_pass != o.photons_per_pass)
         return text("photons_per_pass", number(photons_per_pass), number(o.photons_per_pass));
     if (max_depth != o.max_depth) return text("max_depth", number(max_depth), number(o.max_depth));
+    if (glossy_gather_alpha_bits != o.glossy_gather_alpha_bits)
+        return text("glossy_gather_alpha", format_number(glossy_gather_alpha(*this)),
+                    format_number(glossy_gather_alpha(o)));
     if (camera_hash != o.camera_hash) return "the cameras differ";
     if (scene_hash != o.scene_hash) return "the scenes differ";
     return "";

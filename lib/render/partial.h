@@ -8,7 +8,8 @@
 //   "PPMPART\0", u32 version, u32 byte-order mark 0x01020304
 //   identity: u32 width, u32 height, u32 mode, u32 direct_lighting, u64 seed,
 //             f64 initial_radius, f64 initial_radius_pixels, f64 alpha, u64 photons_per_pass,
-//             u32 max_depth, u32 0, u64 camera hash, u64 scene hash
+//             u32 max_depth, u32 glossy_gather_alpha (float bits; 0 = the default 0.2, as
+//             files before the setting wrote), u64 camera hash, u64 scene hash
 //   u64 pass_total (the render's planned pass count; 0: not given), u64 photons emitted,
 //   u64 rejected values, u64 range count n, n x (u64 first, u64 end) pass ranges
 //   u64 pixel count, u64 compressed size c, c bytes: zlib of the pixel records, each
@@ -32,11 +33,17 @@ struct RenderIdentity {
     double initial_radius = 0, initial_radius_pixels = 0, alpha = 0;
     std::uint64_t photons_per_pass = 0;
     std::uint32_t max_depth = 0;
+    std::uint32_t glossy_gather_alpha_bits = 0; // see glossy_gather_alpha_bits() below
     std::uint64_t camera_hash = 0, scene_hash = 0;
 
     // "" if equal, else what differs: "its seed is 3, the other's is 4".
     std::string difference(const RenderIdentity &other) const;
 };
+
+// The setting as the identity records it: the bits of the float nearest to it, 0 for the
+// default (so that partials written before the setting existed keep their identity).
+std::uint32_t glossy_gather_alpha_bits(double value);
+double glossy_gather_alpha(const RenderIdentity &id);
 
 class Partial : public RefCounted {
 public:

@@ -67,7 +67,8 @@ void PhotonTracer::trace_photon(const RenderScene &scene, const RenderSettings &
         if (!scene.intersect(ray, sp, leaving)) return;
         const Vec3 direction = Vec3::from(ray.dir);
         // Depth 0 is direct light, which the eye pass estimates by itself (unless told not to).
-        if ((depth > 0 || !settings.direct_lighting) && sp.bsdf.has_non_specular() && estimator.may_gather(sp.p))
+        if ((depth > 0 || !settings.direct_lighting) && sp.bsdf.gathers(settings.glossy_gather_alpha) &&
+            estimator.may_gather(sp.p))
             hits.push_back({sp.p, direction, flux});
         const double u_lobe = rng.uniform(), v1 = rng.uniform(), v2 = rng.uniform();
         const BsdfSample s = sp.bsdf.sample(sp.wo_local, u_lobe, v1, v2, TransportMode::Importance);

@@ -36,10 +36,13 @@ template <class Emit> void PpmIntegrator::trace_split_path(const PassInputs &in,
         length += sp.hit.t;
         emit(nullptr, weight * sp.emitted);
         const Vec3 dir = Vec3::from(ray.dir);
-        if (sp.bsdf.has_non_specular()) {
+        const double gather_alpha = in.settings.glossy_gather_alpha;
+        if (sp.bsdf.gathers(gather_alpha)) {
+            // The gathered part (diffuse, a coat's base, a rough lobe of alpha >= gather_alpha)
+            // becomes a visible point; a coat's reflection is followed as a branch.
             const VisiblePoint vp = make_visible_point(in, sp, dir, weight, length);
             emit(&vp, Rgb());
-            if (sp.bsdf.specular_probability(sp.wo_local) <= 0) return;
+            if (sp.bsdf.continue_probability(sp.wo_local, gather_alpha) <= 0) return;
             // Coat reflection: sample() with u_lobe = 0 takes the specular lobe, and
             // weight * pdf is its Fresnel factor.
             const BsdfSample s = sp.bsdf.sample(sp.wo_local, 0.0, 0.5, 0.5, TransportMode::Radiance);
@@ -50,8 +53,9 @@ template <class Emit> void PpmIntegrator::trace_split_path(const PassInputs &in,
         }
         const BsdfSample reflected = sp.bsdf.sample(sp.wo_local, 0.0, 0.5, 0.5, TransportMode::Radiance);
         const BsdfSample transmitted = sp.bsdf.sample(sp.wo_local, 1.0 - 0x1p-53, 0.5, 0.5, TransportMode::Radiance);
-        const bool two_branches = reflected.valid() && transmitted.valid() && reflected.pdf < 1 &&
-                                  transmitted.pdf < 1 && reflected.wi.z * transmitted.wi.z < 0;
+        const bool two_branches = reflected.valid() && transmitted.valid() && reflected.is_specular &&
+                                  transmitted.is_specular && reflected.pdf < 1 && transmitted.pdf < 1 &&
+                                  reflected.wi.z * transmitted.wi.z < 0;
         if (two_branches && budget > 0) {
             --budget;
             trace_split_path(in, spawn_ray(sp.hit, sp.frame.to_world(reflected.wi)), &sp.hit,
@@ -60,12 +64,14 @@ template <class Emit> void PpmIntegrator::trace_split_path(const PassInputs &in,
             ray = spawn_ray(sp.hit, sp.frame.to_world(transmitted.wi));
             continue;
         }
-        // One branch: a mirror, total internal reflection, or glass beyond the split budget
-        // (sampled with the pixel's own random numbers, fixed for the whole render).
+        // One branch: a mirror, total internal reflection, glass beyond the split budget, or a
+        // rough lobe narrower than glossy_gather_alpha (sampled with the pixel's own random
+        // numbers, fixed for the whole render: the one direction PPM's fixed points follow).
         CounterRng rng(in.settings.seed, kCameraStream, 0,
                        (std::uint64_t(pixel) << 20) | std::uint64_t(depth) << 8 |
                            static_cast<std::uint64_t>(budget & 0xFF));
-        const BsdfSample s = sp.bsdf.sample(sp.wo_local, rng.uniform(), 0.5, 0.5, TransportMode::Radiance);
+        const double u_lobe = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+        const BsdfSample s = sp.bsdf.sample(sp.wo_local, u_lobe, u1, u2, TransportMode::Radiance);
         if (!s.valid()) return;
         weight *= s.weight;
         ray = spawn_ray(sp.hit, sp.frame.to_world(s.wi));
@@ -114,7 +120,9 @@ void PpmIntegrator::trace_fixed_points(const PassInputs &in, Film &film, Density
         visible_.insert(visible_.end(), rows[y].points.begin(), rows[y].points.end());
         fixed_emitted_.insert(fixed_emitted_.end(), row_emitted[y].begin(), row_emitted[y].end());
     }
-    estimator.reset(slot_pixel.size(), in.flux_scale);
+    bool full_lobes = false;
+    for (const VisiblePoint &vp : visible_) full_lobes = full_lobes || (vp.valid && vp.bsdf.needs_full_eval());
+    estimator.reset(slot_pixel.size(), in.flux_scale, full_lobes);
     film.set_slots(std::move(slot_pixel));
 }
 

@@ -126,4 +126,10 @@ void RenderScene::shade(const ppm_ray &ray, SurfacePoint &out) const {
     out.emitted = (!emission.is_black() && out.wo_local.z > 0) ? emission : Rgb();
 }
 
+bool RenderScene::gathers_full_lobes(double gather_alpha) const {
+    for (const Material &m : geometry_materials_)
+        if (m.bsdf.needs_full_eval() && m.bsdf.gathers(gather_alpha)) return true;
+    return false;
+}
+
 } // namespace ppm

@@ -54,6 +54,9 @@ public:
     bool occluded(const ppm_ray &ray, const ppm_hit *leaving, const Light &light) const {
         return scene_->occluded(ray, RayHints{leaving, light.geometry()});
     }
+    // Whether any material stores visible points that evaluate the whole BSDF per photon
+    // (Bsdf::needs_full_eval and gathers(gather_alpha)): DensityEstimator::reset's full_lobes.
+    bool gathers_full_lobes(double gather_alpha) const;
     // Area light radiance of a geometry (black for most).
     const Rgb &emission(uint32_t geom_id) const { return geometry_emission_[geom_id]; }
 

@@ -17,9 +17,16 @@ struct KnownSetting {
     const char *type;
 };
 constexpr KnownSetting kSettings[] = {
-    {"mode", "a string"},           {"photons_per_pass", "an integer"},    {"alpha", "a number"},
-    {"initial_radius", "a number"}, {"initial_radius_pixels", "a number"}, {"max_depth", "an integer"},
-    {"seed", "an integer"},         {"hit_point_search", "a string"},      {"direct_lighting", "an integer"},
+    {"mode", "a string"},
+    {"photons_per_pass", "an integer"},
+    {"alpha", "a number"},
+    {"initial_radius", "a number"},
+    {"initial_radius_pixels", "a number"},
+    {"max_depth", "an integer"},
+    {"seed", "an integer"},
+    {"hit_point_search", "a string"},
+    {"direct_lighting", "an integer"},
+    {"glossy_gather_alpha", "a number"},
 };
 
 // The type of a known key with its article, or nullptr.
@@ -76,7 +83,8 @@ void RenderSettings::set_int(const std::string &key, std::int64_t value, bool st
         require_not_started(key, started);
         if (value != 0 && value != 1) invalid_argument("direct_lighting must be 0 or 1, not " + std::to_string(value));
         direct_lighting = value == 1;
-    } else if (key == "alpha" || key == "initial_radius" || key == "initial_radius_pixels") {
+    } else if (key == "alpha" || key == "initial_radius" || key == "initial_radius_pixels" ||
+               key == "glossy_gather_alpha") {
         set_double(key, static_cast<double>(value), started);
     } else {
         unknown(key, "integer");
@@ -101,6 +109,10 @@ void RenderSettings::set_double(const std::string &key, double value, bool start
         if (!(value > 0 && value <= 1e6))
             invalid_argument("initial_radius_pixels must be in (0, 1e6], not " + format_number(value));
         initial_radius_pixels = value;
+    } else if (key == "glossy_gather_alpha") {
+        require_not_started(key, started);
+        if (!(value >= 0)) invalid_argument("glossy_gather_alpha must be >= 0, not " + format_number(value));
+        glossy_gather_alpha = value;
     } else if (key == "photons_per_pass" || key == "max_depth" || key == "seed" || key == "direct_lighting") {
         if (value != std::floor(value)) invalid_argument("render setting '" + key + "' must be a whole number");
         set_int(key, static_cast<std::int64_t>(value), started);
@@ -144,6 +156,7 @@ double RenderSettings::get_double(const std::string &key) const {
     if (key == "alpha") return alpha;
     if (key == "initial_radius") return initial_radius;
     if (key == "initial_radius_pixels") return initial_radius_pixels;
+    if (key == "glossy_gather_alpha") return glossy_gather_alpha;
     if (key == "photons_per_pass" || key == "max_depth" || key == "seed" || key == "direct_lighting")
         return static_cast<double>(get_int(key));
     unknown(key, "number");

@@ -22,8 +22,13 @@
 // |                    |        |         | find the same hit points, the grid faster           |
 // | direct_lighting    | int    | 1       | 1: direct light by shadow rays in the eye pass;     |
 // |                    |        |         | 0: from photons too (for tests and comparisons)     |
+// | glossy_gather_alpha | double | 0.2    | microfacet lobes with min(alpha_u, alpha_v) >= this |
+// |                    |        |         | are gathered at visible points, narrower ones are   |
+// |                    |        |         | followed like mirrors (Bsdf::continue_probability); |
+// |                    |        |         | >= 0, finite                                        |
 //
-// mode, seed, direct_lighting, initial_radius and initial_radius_pixels are fixed once the first pass has run;
+// mode, seed, direct_lighting, initial_radius, initial_radius_pixels and glossy_gather_alpha are fixed once the
+// first pass has run;
 // in pppm mode photons_per_pass, alpha and max_depth too (every pass must be the same
 // experiment for the mean, and for partial renders to merge); the others may change between
 // passes.
@@ -51,6 +56,12 @@ struct RenderSettings {
     std::uint64_t seed = 0;
     Search search = Search::Grid;
     bool direct_lighting = true;
+    // Why 0.2: a lobe's reflected image is about 2 alpha wide (the half vector doubles
+    // angles), so at 0.2 it spans ~ 0.4 rad, far more than the blur r / distance of a gather
+    // radius of a pixel footprint or so, and photons land in it often enough (it covers ~ 1/20
+    // of the projected hemisphere). Narrower lobes (Mitsuba's default roughconductor alpha 0.1
+    // among them) are continued, which is unbiased and cheap.
+    double glossy_gather_alpha = 0.2;
 
     // Set one setting from its key; `started` is whether a pass has run. Throws ppm::Error:
     // INVALID_ARGUMENT for an unknown key, a key of another type or a value out of range

@@ -16,6 +16,7 @@ RenderIdentity Renderer::identity() const {
     id.initial_radius = settings_.initial_radius, id.initial_radius_pixels = settings_.initial_radius_pixels;
     id.alpha = settings_.alpha, id.photons_per_pass = settings_.photons_per_pass;
     id.max_depth = static_cast<std::uint32_t>(settings_.max_depth);
+    id.glossy_gather_alpha_bits = glossy_gather_alpha_bits(settings_.glossy_gather_alpha);
     id.camera_hash = camera_hash(), id.scene_hash = scene_hash();
     return id;
 }

@@ -68,13 +68,13 @@ Rgb SppmIntegrator::follow_path(const PassInputs &in, CounterRng &rng, ppm_ray r
         length += sp.hit.t;
         direct += weight * sp.emitted;
         const double u_lobe = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-        if (sp.bsdf.has_non_specular()) {
-            // The same test sample() makes: below p_specular it reflects off the coat.
-            const double p_specular = sp.bsdf.specular_probability(sp.wo_local);
-            if (u_lobe >= p_specular) {
-                vp = make_visible_point(in, sp, Vec3::from(ray.dir), weight / (1.0 - p_specular), length);
-                break;
-            }
+        // Stop at a visible point or continue (Bsdf::continue_probability: the rule for glossy
+        // lobes); sample() makes the same test, so below p_continue it takes a continued lobe.
+        // Emission found after a continued bounce is added like after a specular one.
+        const double p_continue = sp.bsdf.continue_probability(sp.wo_local, in.settings.glossy_gather_alpha);
+        if (u_lobe >= p_continue) {
+            vp = make_visible_point(in, sp, Vec3::from(ray.dir), weight / (1.0 - p_continue), length);
+            break;
         }
         const BsdfSample s = sp.bsdf.sample(sp.wo_local, u_lobe, u1, u2, TransportMode::Radiance);
         if (!s.valid()) break;
@@ -92,7 +92,8 @@ void SppmIntegrator::make_slots(const PassInputs &in, Film &film, DensityEstimat
     // Each slot's state: the film's and the estimator's.
     constexpr std::uint64_t slot_bytes = Film::kSlotBytes + DensityEstimator::kSlotBytes;
     allocate_or_fail(film.description(), pixels * slot_bytes, [&] {
-        estimator.reset(pixels, in.flux_scale); // the largest arrays first
+        // the largest arrays first
+        estimator.reset(pixels, in.flux_scale, in.scene.gathers_full_lobes(in.settings.glossy_gather_alpha));
         std::vector<std::uint32_t> slot_pixel(pixels);
         for (std::uint32_t p = 0; p < pixels; ++p) slot_pixel[p] = p;
         film.set_slots(std::move(slot_pixel));

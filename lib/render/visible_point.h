@@ -35,6 +35,16 @@ struct alignas(64) GatherPoint {
 };
 static_assert(sizeof(GatherPoint) == 64, "a gather point fills one cache line");
 
+// What a photon needs of a visible point whose lobe depends on the whole of wi (a rough
+// conductor, FixedWoLobe::needs_full_eval): f = bsdf.eval(wo_local, frame.to_local(wi)).
+// Kept aside from the gather points (a few hundred bytes, only for scenes that have such
+// lobes).
+struct FullLobe {
+    Frame frame;
+    Vec3 wo_local;
+    Bsdf bsdf;
+};
+
 // A photon arriving at a surface where it may be gathered, buffered so that a batch of them
 // can be gathered in spatial order (hit points then stay in cache).
 struct PhotonHit {

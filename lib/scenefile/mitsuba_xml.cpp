@@ -53,7 +53,7 @@ const std::set<std::string> &object_tags() {
 // The types the builder renders (scene_builder.cpp); lenient mode substitutes the others.
 const std::set<std::string> &renderable(const std::string &tag) {
     static const std::map<std::string, std::set<std::string>> types = {
-        {"bsdf", {"diffuse", "conductor", "dielectric", "plastic", "twosided"}},
+        {"bsdf", {"diffuse", "conductor", "roughconductor", "dielectric", "plastic", "twosided"}},
         {"emitter", {"point", "spot", "area"}},
         {"shape", {"sphere", "rectangle", "disk", "cylinder", "cube", "obj", "ply", "serialized", "bezier"}},
         {"texture", {"bitmap"}}};

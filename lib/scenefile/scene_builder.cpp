@@ -53,23 +53,19 @@ std::uint32_t SceneBuilder::add_bsdf(const JsonNode &bsdf) {
     bsdf.require_object();
     const std::string type = bsdf.at("type").string();
     std::uint32_t id = 0;
-    if (type != "diffuse" && type != "conductor" && type != "dielectric" && type != "plastic") {
-        // Every other type as the API's material table reads it (it names unknown types).
+    if (type != "diffuse" && type != "dielectric" && type != "plastic") {
+        // Every other type (conductor and roughconductor among them: their eta, k and named
+        // materials) as the API's material table reads it (it names unknown types).
         const SceneParams params = params_of(bsdf);
         params.check(ppm_scene_add_material(scene_, type.c_str(), params.data(), params.size(), &id));
         return id;
     }
     // The colour key, which may instead hold a bitmap texture.
     const char *color_key = nullptr;
-    double default_color = 0.5;
+    const double default_color = 0.5;
     if (type == "diffuse") {
         bsdf.allow_only({"type", "reflectance"});
         color_key = "reflectance";
-    } else if (type == "conductor") {
-        bsdf.allow_only({"type", "specular_reflectance", "material"});
-        if (bsdf.has("material")) bsdf.at("material").one_of({"none"});
-        color_key = "specular_reflectance";
-        default_color = 1;
     } else if (type == "plastic") {
         bsdf.allow_only({"type", "diffuse_reflectance", "int_ior", "ext_ior", "nonlinear"});
         if (bsdf.has("nonlinear") && bsdf.at("nonlinear").boolean())
@@ -88,8 +84,6 @@ std::uint32_t SceneBuilder::add_bsdf(const JsonNode &bsdf) {
 
     if (type == "diffuse") {
         check(bsdf, ppm_scene_add_diffuse_material(scene_, color.data(), &id));
-    } else if (type == "conductor") {
-        check(bsdf, ppm_scene_add_mirror_material(scene_, color.data(), &id));
     } else if (type == "plastic") {
         check(bsdf,
               ppm_scene_add_coated_material(scene_, color.data(), ior("int_ior", 1.49), ior("ext_ior", 1.000277), &id));

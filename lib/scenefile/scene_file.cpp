@@ -19,7 +19,7 @@ namespace {
 // ppm_renderer_set_*, so that an error points into the file.
 void read_integrator(const JsonNode &node, RenderSettings &settings, std::int64_t &passes, double &time) {
     node.allow_only({"type", "passes", "time", "photons_per_pass", "alpha", "initial_radius", "initial_radius_pixels",
-                     "max_depth", "seed", "hit_point_search", "direct_lighting"});
+                     "max_depth", "seed", "hit_point_search", "direct_lighting", "glossy_gather_alpha"});
     const auto apply = [&](const JsonNode &value, auto &&set) {
         try {
             set();

@@ -9,7 +9,8 @@ keys with the same defaults (transforms as ordered operation lists, colours as a
   - sensor: `perspective` / `thinlens` with the same `to_world`, fov along x (`fov_axis: "x"`),
     `hdrfilm` with a box reconstruction filter, an `independent` sampler;
   - integrator: `path` with max_depth = ours + 1 (Mitsuba also counts the emitter);
-  - bsdfs: `diffuse`, `conductor` (`material: "none"`), `dielectric`, `plastic`
+  - bsdfs: `diffuse`, `conductor` and `roughconductor` (named `material` or `eta`/`k`),
+    `dielectric`, `plastic`
     (`nonlinear: false`); the opaque ones wrapped in `twosided`, as libppm's are two-sided;
     `bitmap` textures with to_uv = translate(offset) scale(scale), bilinear, repeating;
   - emitters: `point`, `spot`, and `area` emitters on shapes;
@@ -331,19 +332,35 @@ class Translator:
                 raise SceneError(f"{where}: no bsdf named '{b}'")
             return self.bsdfs[b]
         check_keys(b, {"type", "reflectance", "specular_reflectance", "material", "int_ior", "ext_ior",
-                       "diffuse_reflectance", "nonlinear"}, where)
+                       "diffuse_reflectance", "nonlinear", "eta", "k", "distribution", "alpha", "alpha_u",
+                       "alpha_v", "sample_visible"}, where)
         kind = b.get("type")
         if kind == "diffuse":
             check_keys(b, {"type", "reflectance"}, where)
             inner = {"type": "diffuse", "reflectance": self.texture_or_colour(b.get("reflectance", 0.5),
                                                                              f"{where}.reflectance")}
-        elif kind == "conductor":
-            check_keys(b, {"type", "specular_reflectance", "material"}, where)
-            if b.get("material", "none") != "none":
-                raise SceneError(f"{where}.material: must be \"none\"")
-            inner = {"type": "conductor", "material": "none",
+        elif kind in ("conductor", "roughconductor"):
+            rough = kind == "roughconductor"
+            check_keys(b, {"type", "specular_reflectance", "material", "eta", "k"} |
+                       ({"distribution", "alpha", "alpha_u", "alpha_v", "sample_visible"} if rough else set()),
+                       where)
+            inner = {"type": kind,
                      "specular_reflectance": self.texture_or_colour(b.get("specular_reflectance", 1),
                                                                     f"{where}.specular_reflectance")}
+            # Mitsuba's own keys: a named material, or eta and k (numbers or RGB).
+            if "eta" in b or "k" in b:
+                inner["eta"] = rgb(colour(b.get("eta", 0.0), f"{where}.eta"))
+                inner["k"] = rgb(colour(b.get("k", 1.0), f"{where}.k"))
+            else:
+                inner["material"] = str(b.get("material", "none"))
+            if rough:
+                inner["distribution"] = str(b.get("distribution", "beckmann"))
+                if "alpha_u" in b or "alpha_v" in b:
+                    inner["alpha_u"] = number(b.get("alpha_u", 0.1), f"{where}.alpha_u")
+                    inner["alpha_v"] = number(b.get("alpha_v", 0.1), f"{where}.alpha_v")
+                else:
+                    inner["alpha"] = number(b.get("alpha", 0.1), f"{where}.alpha")
+                inner["sample_visible"] = bool(b.get("sample_visible", True))
         elif kind == "dielectric":
             check_keys(b, {"type", "int_ior", "ext_ior"}, where)
             return {"type": "dielectric", "int_ior": number(b.get("int_ior", 1.5046), f"{where}.int_ior"),
@@ -358,7 +375,7 @@ class Translator:
                      "int_ior": number(b.get("int_ior", 1.49), f"{where}.int_ior"),
                      "ext_ior": number(b.get("ext_ior", 1.000277), f"{where}.ext_ior")}
         else:
-            raise SceneError(f"{where}.type: expected diffuse, conductor, dielectric or plastic")
+            raise SceneError(f"{where}.type: expected diffuse, conductor, roughconductor, dielectric or plastic")
         return {"type": "twosided", "bsdf": inner}
 
     def emitter(self, e, where):
