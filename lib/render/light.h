@@ -5,7 +5,13 @@
 //    angle to zero at `cutoff_angle` (src/emitters/spot.cpp, falloff_curve);
 //  - area (`area` on a `rectangle` or `sphere` shape): `radiance` L, emitted on the side the
 //    surface normal points to only (the quad's edge_u x edge_v, the sphere's outside), with
-//    power pi L A.
+//    power pi L A;
+//  - lights at infinity: constant (`constant`, uniform `radiance` L from every direction),
+//    environment map (`envmap`, a lat-long image times `scale`, oriented by `to_world`) and
+//    directional (`directional`, `irradiance` E on a surface facing the light, a delta
+//    light). Photons from them cross a disk perpendicular to their direction that covers
+//    the scene's bounding sphere (radius R): power pi R^2 times the integral of L over
+//    directions (constant 4 pi^2 R^2 L, directional pi R^2 E). See set_scene_sphere.
 // A light answers the two questions the renderer asks: a photon leaving it (emit) and the
 // light arriving at a point from one sample on it (sample_direct).
 #pragma once
@@ -15,6 +21,7 @@
 #include "math/vec3.h"
 
 #include <cstdint>
+#include <memory>
 
 namespace ppm {
 
@@ -31,9 +38,12 @@ struct DirectLightSample {
     Rgb radiance_over_pdf; // L(direction) / pdf(direction), solid angle measure; 0 if none
 };
 
+class EnvironmentMap;
+class Texture;
+
 class Light {
 public:
-    enum class Type { Point, Spot, Quad, Sphere };
+    enum class Type { Point, Spot, Quad, Sphere, Constant, Envmap, Directional };
 
     // Factories check their arguments (finite, non-negative colours; positive sizes; angles
     // with 0 < beam_width <= cutoff_angle <= 90 degrees) and throw ppm::Error naming the bad one.
@@ -42,8 +52,26 @@ public:
                       double beam_width_degrees);
     static Light quad(const Vec3 &origin, const Vec3 &edge_u, const Vec3 &edge_v, const Rgb &radiance);
     static Light sphere(const Vec3 &center, double radius, const Rgb &radiance);
+    // Lights at infinity. `to_world` of an envmap: the columns of its linear part (a rotation,
+    // possibly mirrored, times a uniform scale; anything else is refused). `direction` of a
+    // directional light: where its light travels (Mitsuba's `direction`).
+    static Light constant(const Rgb &radiance);
+    static Light envmap(std::shared_ptr<const Texture> image, double scale, const Vec3 to_world_columns[3]);
+    static Light directional(const Vec3 &direction, const Rgb &irradiance);
 
     Type type() const { return type_; }
+    bool is_infinite() const { return type_ == Type::Constant || type_ == Type::Envmap || type_ == Type::Directional; }
+    // Whether a camera ray that leaves the scene in some direction sees this light.
+    bool is_environment() const { return type_ == Type::Constant || type_ == Type::Envmap; }
+    // Radiance arriving from direction `towards` (unit, world, pointing away from the scene)
+    // of an environment light (constant, envmap); black for every other light.
+    Rgb environment(const Vec3 &towards) const;
+    // Solid-angle density sample_direct draws `towards` with (environment lights only).
+    double pdf_direct(const Vec3 &towards) const;
+    // The scene's bounding sphere, which photons from lights at infinity are aimed at; sets
+    // their power. The renderer calls it with the committed scene's bounds.
+    void set_scene_sphere(const Vec3 &center, double radius);
+    const EnvironmentMap *environment_map() const { return env_.get(); }
     Rgb power() const { return power_; }
 
     // A photon from four uniform numbers in [0, 1). Area lights start it `surface_offset`
@@ -66,14 +94,17 @@ private:
     Type type_ = Type::Point;
     Rgb color_; // intensity (point, spot) or radiance (area)
     Rgb power_;
-    Vec3 position_; // point/spot position, quad origin, sphere centre
+    Vec3 position_;  // point/spot position, quad origin, sphere centre, scene sphere centre
+    Vec3 direction_; // directional: towards the light (minus Mitsuba's direction)
     Vec3 edge_u_, edge_v_;
-    Frame frame_; // spot: n = axis; quad: n = unit normal
+    Frame frame_; // spot: n = axis; quad: n = unit normal; envmap: columns of to_world in s, t, n
     double area_ = 0;
     double radius_ = 0;
     double cos_cutoff_ = 0, cos_beam_ = 1, cutoff_ = 0, beam_ = 0;
     double surface_offset_ = 0;
-    uint32_t geom_id_ = 0xFFFFFFFFu; // PPM_INVALID_ID
+    double scene_radius_ = 0;                   // lights at infinity: bounding sphere
+    std::shared_ptr<const EnvironmentMap> env_; // envmap
+    uint32_t geom_id_ = 0xFFFFFFFFu;            // PPM_INVALID_ID
 };
 
 } // namespace ppm

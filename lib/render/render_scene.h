@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // What the renderer reads of a committed scene, gathered once when a renderer is created:
-// the lights (point and spot lights plus one area light per emitting quad or sphere) with
+// the lights (point, spot and lights at infinity, plus one area light per emitting quad or
+// sphere; lights at infinity are given the scene's bounding sphere) with
 // the probabilities photons pick them by, and a material for every geometry.
 #pragma once
 
@@ -54,6 +55,10 @@ public:
     bool occluded(const ppm_ray &ray, const ppm_hit *leaving, const Light &light) const {
         return scene_->occluded(ray, RayHints{leaving, light.geometry()});
     }
+    // Radiance arriving from the environment lights (constant, envmap) along `direction`
+    // (any length), which a ray that leaves the scene sees; black without such lights.
+    Rgb environment(const Vec3 &direction) const;
+    bool has_environment() const { return !environment_lights_.empty(); }
     // Area light radiance of a geometry (black for most).
     const Rgb &emission(uint32_t geom_id) const { return geometry_emission_[geom_id]; }
 
@@ -65,7 +70,8 @@ private:
     std::vector<Material> geometry_materials_; // one per geometry
     std::vector<Rgb> geometry_emission_;       // one per geometry
     std::vector<Light> lights_;
-    std::vector<double> light_cdf_; // cumulative selection probabilities
+    std::vector<size_t> environment_lights_; // indices into lights_
+    std::vector<double> light_cdf_;          // cumulative selection probabilities
     Rgb total_power_;
 };
 
