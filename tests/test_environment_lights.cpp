@@ -286,7 +286,8 @@ Picture render(ppm_scene scene, const double origin[3], const double target[3], 
     return p;
 }
 
-void sphere_under_constant_environment(void **state, const char *mode, int direct_lighting) {
+// `envmap` true: the same radiance as a uniform environment map (its own sampling and photons).
+void sphere_under_constant_environment(void **state, const char *mode, int direct_lighting, bool envmap = false) {
     scene_fixture *f = static_cast<scene_fixture *>(*state);
     const double rho[3] = {0.5, 0.25, 0.8}, center[3] = {0, 0, 0};
     uint32_t m, g;
@@ -294,7 +295,14 @@ void sphere_under_constant_environment(void **state, const char *mode, int direc
     assert_ppm_ok(ppm_scene_add_sphere(f->scene, center, 1.0, &g));
     assert_ppm_ok(ppm_scene_set_geometry_material(f->scene, g, m));
     const Rgb radiance(1.0, 2.0, 0.5);
-    f->scene->shading.add_light(Light::constant(radiance));
+    if (envmap) {
+        std::vector<float> rgb;
+        for (int k = 0; k < 8 * 5; ++k) rgb.insert(rgb.end(), {1.0f, 2.0f, 0.5f});
+        f->scene->shading.add_light(
+            Light::envmap(std::make_shared<Texture>(8, 5, std::move(rgb), "uniform"), 1.0, kIdentity));
+    } else {
+        f->scene->shading.add_light(Light::constant(radiance));
+    }
     assert_ppm_ok(ppm_scene_commit(f->scene));
     const double origin[3] = {0, 0, -4}, target[3] = {0, 0, 0}, up[3] = {0, 1, 0};
     const Picture p = render(f->scene, origin, target, up, 40, 32, mode, direct_lighting, direct_lighting ? 128 : 24,
@@ -303,9 +311,9 @@ void sphere_under_constant_environment(void **state, const char *mode, int direc
     const double want[3] = {0.5 * 1.0, 0.25 * 2.0, 0.8 * 0.5};
     for (int c = 0; c < 3; ++c) {
         const double centre = p.mean(8, 8, 24, 24, c), corner = p.mean(0, 0, 3, 3, c);
-        print_message("constant environment %s direct_lighting=%d channel %d: sphere %.4f (expected %.4f), sky "
+        print_message("%s environment %s direct_lighting=%d channel %d: sphere %.4f (expected %.4f), sky "
                       "%.4f\n",
-                      mode, direct_lighting, c, centre, want[c], corner);
+                      envmap ? "uniform envmap" : "constant", mode, direct_lighting, c, centre, want[c], corner);
         // One uniform shadow sample a pass: 1.3 rho L standard deviation each, 0.7 % over the
         // 16 x 16 x 128 samples.
         assert_close(centre, want[c], (direct_lighting ? 0.025 : 0.04) * want[c]);
@@ -316,6 +324,9 @@ void sphere_under_constant_environment(void **state, const char *mode, int direc
 void sphere_constant_sppm(void **state) { sphere_under_constant_environment(state, "sppm", 1); }
 void sphere_constant_sppm_photons_only(void **state) { sphere_under_constant_environment(state, "sppm", 0); }
 void sphere_constant_ppm(void **state) { sphere_under_constant_environment(state, "ppm", 1); }
+void sphere_constant_pppm_photons_only(void **state) { sphere_under_constant_environment(state, "pppm", 0); }
+void sphere_uniform_envmap(void **state) { sphere_under_constant_environment(state, "sppm", 1, true); }
+void sphere_uniform_envmap_photons_only(void **state) { sphere_under_constant_environment(state, "sppm", 0, true); }
 
 void plane_under_directional_light(void **state, int direct_lighting) {
     scene_fixture *f = static_cast<scene_fixture *>(*state);
@@ -355,6 +366,10 @@ int main(void) {
         cmocka_unit_test_setup_teardown(sphere_constant_sppm, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(sphere_constant_sppm_photons_only, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(sphere_constant_ppm, scene_fixture_setup, scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(sphere_constant_pppm_photons_only, scene_fixture_setup, scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(sphere_uniform_envmap, scene_fixture_setup, scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(sphere_uniform_envmap_photons_only, scene_fixture_setup,
+                                        scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(plane_directional, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(plane_directional_photons_only, scene_fixture_setup, scene_fixture_teardown),
     };
