@@ -354,6 +354,85 @@ void plane_under_directional_light(void **state, int direct_lighting) {
 void plane_directional(void **state) { plane_under_directional_light(state, 1); }
 void plane_directional_photons_only(void **state) { plane_under_directional_light(state, 0); }
 
+// The three types through JSON and Mitsuba XML scene files (the generic light table): the
+// sky a camera sees, and errors naming the parameter or the file.
+Picture render_file(ppm_scene_file file, int passes) {
+    ppm_renderer r = nullptr;
+    assert_ppm_ok(ppm_scene_file_create_renderer(file, &r));
+    assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", 1000));
+    for (int i = 0; i < passes; ++i) assert_ppm_ok(ppm_render_pass(r));
+    int64_t w = 0, h = 0, lights = 0;
+    assert_ppm_ok(ppm_renderer_get_int(r, "width", &w));
+    assert_ppm_ok(ppm_renderer_get_int(r, "height", &h));
+    assert_ppm_ok(ppm_renderer_get_int(r, "lights", &lights));
+    assert_true(lights >= 1);
+    Picture p;
+    p.w = static_cast<int>(w), p.h = static_cast<int>(h);
+    p.rgb.resize(static_cast<size_t>(w * h * 3));
+    assert_ppm_ok(ppm_renderer_get_layer(r, "radiance", p.rgb.data(), p.rgb.size()));
+    ppm_renderer_release(r);
+    return p;
+}
+
+ppm_status load_text(ppm_context context, const std::string &text, const char *name, const char *folder,
+                     ppm_scene_file *out) {
+    return ppm_scene_file_load_memory(context, text.data(), text.size(), name, folder, nullptr, out);
+}
+
+void scene_files_load_the_types(void **state) {
+    scene_fixture *f = static_cast<scene_fixture *>(*state);
+    char folder[512];
+    assert_int_equal(test_make_folder(folder, sizeof folder, "ppm-envfile-"), 0);
+    std::vector<float> rgb(6 * 4 * 3, 0.5f);
+    write_exr(std::string(folder) + "/sky.exr", 6, 4, rgb);
+    // JSON: constant + directional; the sky seen is the constant radiance.
+    const std::string json = R"({
+      "sensor": { "type": "perspective", "fov": 30,
+                  "to_world": { "look_at": { "origin": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0] } },
+                  "film": { "width": 16, "height": 16 } },
+      "emitters": [ { "type": "constant", "radiance": [0.25, 0.5, 1.0] },
+                    { "type": "directional", "direction": [0, 0, -1], "irradiance": 2 } ],
+      "shapes": [ { "type": "sphere", "radius": 0.5 } ]
+    })";
+    ppm_scene_file file = nullptr;
+    assert_ppm_ok(load_text(f->context, json, "lights.json", folder, &file));
+    Picture p = render_file(file, 1);
+    assert_close(p.mean(0, 0, 1, 1, 0), 0.25, 1e-6);
+    assert_close(p.mean(0, 0, 1, 1, 2), 1.0, 1e-6);
+    ppm_scene_file_release(file);
+    // XML: an envmap by a relative file name, scaled; a directional light by to_world.
+    const std::string xml = R"(<scene version="3.0.0">
+      <sensor type="perspective"><float name="fov" value="30"/>
+        <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/></film>
+      </sensor>
+      <emitter type="envmap"><string name="filename" value="sky.exr"/><float name="scale" value="3"/>
+        <transform name="to_world"><rotate y="1" angle="90"/></transform></emitter>
+      <emitter type="directional"><transform name="to_world"><lookat origin="0, 0, 0" target="0, -1, 0" up="0, 0, 1"/></transform>
+        <rgb name="irradiance" value="1, 1, 1"/></emitter>
+      <shape type="sphere"><float name="radius" value="0.5"/></shape>
+    </scene>)";
+    assert_ppm_ok(load_text(f->context, xml, "lights.xml", folder, &file));
+    p = render_file(file, 1);
+    assert_close(p.mean(0, 0, 1, 1, 1), 1.5, 1e-5);
+    ppm_scene_file_release(file);
+    // Errors name the parameter or the file.
+    const auto fails = [&](const std::string &emitter, ppm_status status, const char *needle) {
+        const std::string text = R"({ "emitters": [ )" + emitter + R"( ], "shapes": [ { "type": "sphere" } ] })";
+        ppm_scene_file bad = nullptr;
+        assert_ppm_error(load_text(f->context, text, "bad.json", folder, &bad), status, needle);
+        assert_null(bad);
+    };
+    fails(R"({ "type": "envmap", "filename": "nowhere.exr" })", PPM_ERROR_IO, "nowhere.exr");
+    fails(R"({ "type": "envmap", "filename": "sky.exr", "scale": 0 })", PPM_ERROR_PARSE, "scale");
+    fails(R"({ "type": "envmap" })", PPM_ERROR_PARSE, "filename");
+    fails(R"({ "type": "constant", "radiance": -1 })", PPM_ERROR_PARSE, "radiance");
+    fails(R"({ "type": "directional", "radiance": 1 })", PPM_ERROR_PARSE, "radiance");
+    fails(R"({ "type": "directional", "direction": [0, 0, 0] })", PPM_ERROR_PARSE, "direction");
+    std::remove((std::string(folder) + "/sky.exr").c_str());
+    test_remove_folder(folder);
+}
+
 } // namespace
 
 int main(void) {
@@ -372,6 +451,7 @@ int main(void) {
                                         scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(plane_directional, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(plane_directional_photons_only, scene_fixture_setup, scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(scene_files_load_the_types, scene_fixture_setup, scene_fixture_teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

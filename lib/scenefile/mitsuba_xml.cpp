@@ -53,7 +53,7 @@ const std::set<std::string> &object_tags() {
 const std::set<std::string> &renderable(const std::string &tag) {
     static const std::map<std::string, std::set<std::string>> types = {
         {"bsdf", {"diffuse", "conductor", "dielectric", "plastic", "twosided"}},
-        {"emitter", {"point", "spot", "area"}},
+        {"emitter", {"point", "spot", "area", "constant", "envmap", "directional"}},
         {"shape", {"sphere", "rectangle", "cube", "obj", "ply", "serialized", "bezier"}},
         {"texture", {"bitmap"}}};
     static const std::set<std::string> none;
@@ -474,7 +474,12 @@ private:
         if (kind == "point" || kind == "vector") return vector3(node, source);
         if (kind == "rgb" || kind == "spectrum") return colour(node, source, in_emitter);
         const std::string text = substitute(node, source, "value");
-        if (kind == "string") return located(Json::Value(text), node, source);
+        // A relative file name is relative to the XML file that holds it (as Mitsuba's file
+        // resolver), not to the working directory.
+        if (kind == "string")
+            return located(
+                Json::Value(std::string(node.attribute("name").value()) == "filename" ? resolve(source, text) : text),
+                node, source);
         if (kind == "boolean") {
             if (text != "true" && text != "false") error(node, source, "'" + text + "' is not true or false");
             return located(Json::Value(text == "true"), node, source);

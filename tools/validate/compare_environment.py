@@ -13,6 +13,12 @@ target is within 1 %. Not run by CI (Mitsuba is a big download).
 
   tools/validate/compare_environment.py --ppm-render build/tools/render/ppm-render \\
       --mitsuba-python /tmp/mitsuba-venv/bin/python [--size 96] [--spp 256] [--passes 64]
+
+Measured (96 x 96, Mitsuba 3 scalar_rgb path tracer 512 spp, libppm SPPM 64 passes of 200k
+photons, --spp 512): ratios of the image means ours / Mitsuba per channel
+  constant     0.9992 0.9991 0.9991
+  envmap       0.9997 0.9998 1.0001
+  directional  0.9995 0.9996 0.9996
 """
 import argparse
 import os
