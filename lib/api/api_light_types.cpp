@@ -6,6 +6,7 @@
 
 #include "api/api_params.h"
 #include "api/api_support.h"
+#include "render/texture.h"
 
 #include <string>
 
@@ -52,6 +53,38 @@ uint32_t add_spot(ppm_scene_t &scene, Params &p) {
     return scene.shading.add_light(ppm::Light::spot(position, target, intensity, cutoff, beam));
 }
 
+// Mitsuba's `constant` (src/emitters/constant.cpp): uniform `radiance`, default 1.
+uint32_t add_constant(ppm_scene_t &scene, Params &p) {
+    const Rgb radiance = emission(p, "radiance", Rgb(1));
+    p.finish();
+    return scene.shading.add_light(ppm::Light::constant(radiance));
+}
+
+// Mitsuba's `envmap` (src/emitters/envmap.cpp): a lat-long image file times `scale`, turned by
+// the linear part of `to_world`. The file's pixels are checked as it loads (NaN, infinite or
+// negative values and absurd sizes refused, naming the file).
+uint32_t add_envmap(ppm_scene_t &scene, Params &p) {
+    const std::string filename = p.string("filename", "");
+    if (filename.empty()) p.fail("filename", "is required (a latitude-longitude image)");
+    const double scale = p.positive("scale", 1.0);
+    const ppm::Affine to_world = p.transform("to_world", {});
+    p.finish();
+    const Vec3 columns[3] = {to_world.vector({1, 0, 0}), to_world.vector({0, 1, 0}), to_world.vector({0, 0, 1})};
+    return scene.shading.add_light(ppm::Light::envmap(ppm::Texture::load(filename), scale, columns));
+}
+
+// Mitsuba's `directional` (src/emitters/directional.cpp): light travelling along `direction`,
+// or along +z of `to_world` (not both); `irradiance` on a surface facing it, default 1.
+uint32_t add_directional(ppm_scene_t &scene, Params &p) {
+    if (p.has("direction") && p.has("to_world")) p.fail("direction", "and 'to_world' cannot both be given");
+    const Vec3 direction =
+        p.has("to_world") ? p.transform("to_world", {}).vector({0, 0, 1}) : p.vec3("direction", {0, 0, 1});
+    if (!(ppm::length2(direction) > 0)) p.fail(p.has("to_world") ? "to_world" : "direction", "must not be zero");
+    const Rgb irradiance = emission(p, "irradiance", Rgb(1));
+    p.finish();
+    return scene.shading.add_light(ppm::Light::directional(direction, irradiance));
+}
+
 struct LightType {
     const char *name;
     uint32_t (*add)(ppm_scene_t &, Params &);
@@ -60,6 +93,9 @@ struct LightType {
 const LightType kLightTypes[] = {
     {"point", add_point},
     {"spot", add_spot},
+    {"constant", add_constant},
+    {"envmap", add_envmap},
+    {"directional", add_directional},
 };
 
 } // namespace

@@ -4,6 +4,8 @@
 #include "core/error.h"
 #include "geometry/mesh_data.h"
 #include "math/sin_cos.h"
+#include "render/environment_map.h"
+#include "render/texture.h"
 #include "render/warp.h"
 
 #include <algorithm>
@@ -42,7 +44,87 @@ Vec3 uniform_cone(double u1, double u2, double one_minus_cos_max) {
     return {sin_theta * cos_phi, sin_theta * sin_phi, cos_theta};
 }
 
+// Where a photon from a light at infinity arriving along -towards starts: on the disk of
+// radius R perpendicular to `towards`, tangent to the scene's bounding sphere on its side.
+Vec3 disk_origin(const Vec3 &center, double radius, const Vec3 &towards, double u1, double u2) {
+    double x, y;
+    square_to_uniform_disk_concentric(u1, u2, &x, &y);
+    const Frame f = Frame::from_normal(towards);
+    return center + (f.s * x + f.t * y + towards) * radius;
+}
+
 } // namespace
+
+Light Light::constant(const Rgb &radiance) {
+    check_color(radiance, "radiance");
+    Light l;
+    l.type_ = Type::Constant;
+    l.color_ = radiance;
+    l.set_scene_sphere(Vec3{0, 0, 0}, 1);
+    return l;
+}
+
+Light Light::envmap(std::shared_ptr<const Texture> image, double scale, const Vec3 to_world_columns[3]) {
+    if (!image) invalid_argument("envmap needs an image");
+    for (int c = 0; c < 3; ++c) check_point(to_world_columns[c], "to_world");
+    // A rotation (or a mirrored one) times a uniform scale: columns of one length, orthogonal.
+    const double s = length(to_world_columns[0]);
+    const auto close = [&](double a, double b) { return std::fabs(a - b) <= 1e-6 * s * s; };
+    bool ok = s > 0;
+    for (int a = 0; a < 3 && ok; ++a)
+        for (int b = 0; b < 3 && ok; ++b)
+            ok = close(dot(to_world_columns[a], to_world_columns[b]), a == b ? s * s : 0.0);
+    if (!ok) invalid_argument("envmap to_world must be a rotation (possibly mirrored, uniformly scaled)");
+    Light l;
+    l.type_ = Type::Envmap;
+    l.env_ = std::make_shared<const EnvironmentMap>(*image, scale);
+    l.frame_.s = to_world_columns[0] / s;
+    l.frame_.t = to_world_columns[1] / s;
+    l.frame_.n = to_world_columns[2] / s;
+    l.set_scene_sphere(Vec3{0, 0, 0}, 1);
+    return l;
+}
+
+Light Light::directional(const Vec3 &direction, const Rgb &irradiance) {
+    check_point(direction, "direction");
+    check_color(irradiance, "irradiance");
+    if (!(length2(direction) > 0)) invalid_argument("directional light direction must not be zero");
+    Light l;
+    l.type_ = Type::Directional;
+    l.direction_ = normalize(direction) * -1.0;
+    l.color_ = irradiance;
+    l.set_scene_sphere(Vec3{0, 0, 0}, 1);
+    return l;
+}
+
+void Light::set_scene_sphere(const Vec3 &center, double radius) {
+    if (!is_infinite()) return;
+    position_ = center;
+    scene_radius_ = radius;
+    const double disk = kPi * radius * radius;
+    switch (type_) {
+    case Type::Constant: power_ = color_ * (4 * kPi * disk); break;
+    case Type::Envmap: power_ = env_->integral() * disk; break;
+    case Type::Directional: power_ = color_ * disk; break;
+    default: break;
+    }
+}
+
+Rgb Light::environment(const Vec3 &towards) const {
+    switch (type_) {
+    case Type::Constant: return color_;
+    case Type::Envmap: return env_->eval(frame_.to_local(towards));
+    default: return Rgb();
+    }
+}
+
+double Light::pdf_direct(const Vec3 &towards) const {
+    switch (type_) {
+    case Type::Constant: return 0.25 * kInvPi;
+    case Type::Envmap: return env_->pdf(frame_.to_local(towards));
+    default: return 0;
+    }
+}
 
 Light Light::point(const Vec3 &position, const Rgb &intensity) {
     check_point(position, "position");
@@ -287,6 +369,27 @@ EmittedPhoton Light::emit(double u1, double u2, double u3, double u4) const {
         photon.flux = power_;
         break;
     }
+    case Type::Constant:
+    case Type::Envmap:
+    case Type::Directional: {
+        // A direction towards the light, then a point on the disk facing it: flux
+        // L / (pdf_direction * pdf_area) with pdf_area = 1 / (pi R^2).
+        Vec3 towards = direction_;
+        Rgb radiance_over_pdf = color_;
+        if (type_ == Type::Constant) {
+            towards = uniform_sphere(u1, u2);
+            radiance_over_pdf = color_ * (4 * kPi);
+        } else if (type_ == Type::Envmap) {
+            double pdf;
+            const Vec3 local = env_->sample(u1, u2, &pdf);
+            towards = frame_.to_world(local);
+            radiance_over_pdf = pdf > 0 ? env_->eval(local) / pdf : Rgb();
+        }
+        photon.origin = disk_origin(position_, scene_radius_, towards, u3, u4);
+        photon.direction = towards * -1.0;
+        photon.flux = radiance_over_pdf * (kPi * scene_radius_ * scene_radius_);
+        break;
+    }
     }
     return photon;
 }
@@ -349,6 +452,25 @@ DirectLightSample Light::sample_direct(const Vec3 &p, double u1, double u2) cons
         if (cos_light > 0) s.radiance_over_pdf = color_ * (area_ * cos_light * (inv_distance * inv_distance));
         return s;
     }
+    case Type::Constant:
+        s.direction = uniform_sphere(u1, u2);
+        s.distance = INFINITY;
+        s.radiance_over_pdf = color_ * (4 * kPi);
+        return s;
+    case Type::Envmap: {
+        double pdf;
+        const Vec3 local = env_->sample(u1, u2, &pdf);
+        if (!(pdf > 0)) return s;
+        s.direction = frame_.to_world(local);
+        s.distance = INFINITY;
+        s.radiance_over_pdf = env_->eval(local) / pdf;
+        return s;
+    }
+    case Type::Directional:
+        s.direction = direction_;
+        s.distance = INFINITY;
+        s.radiance_over_pdf = color_;
+        return s;
     }
     return s;
 }

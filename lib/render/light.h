@@ -14,6 +14,12 @@
 //    side and gives the cosine of the solid-angle pdf dist^2 / (cos A) and of the photons'
 //    cosine-weighted directions; a camera ray sees the emission when it arrives on the side
 //    of the hit's shading normal (RenderScene::shade), the same normal.
+//  - lights at infinity: constant (`constant`, uniform `radiance` L from every direction),
+//    environment map (`envmap`, a lat-long image times `scale`, oriented by `to_world`) and
+//    directional (`directional`, `irradiance` E on a surface facing the light, a delta
+//    light). Photons from them cross a disk perpendicular to their direction that covers
+//    the scene's bounding sphere (radius R): power pi R^2 times the integral of L over
+//    directions (constant 4 pi^2 R^2 L, directional pi R^2 E). See set_scene_sphere.
 // A light answers the two questions the renderer asks: a photon leaving it (emit) and the
 // light arriving at a point from one sample on it (sample_direct).
 #pragma once
@@ -43,9 +49,12 @@ struct DirectLightSample {
     Rgb radiance_over_pdf; // L(direction) / pdf(direction), solid angle measure; 0 if none
 };
 
+class EnvironmentMap;
+class Texture;
+
 class Light {
 public:
-    enum class Type { Point, Spot, Quad, Sphere, Disk, Cylinder, Mesh };
+    enum class Type { Point, Spot, Quad, Sphere, Disk, Cylinder, Mesh, Constant, Envmap, Directional };
 
     // Factories check their arguments (finite, non-negative colours; positive sizes; angles
     // with 0 < beam_width <= cutoff_angle <= 90 degrees) and throw ppm::Error naming the bad one.
@@ -71,7 +80,26 @@ public:
     // The mesh a mesh light samples (the geometry's own world-space data), else null.
     const MeshData *mesh_data() const { return table_ ? table_->mesh.get() : nullptr; }
 
+    // Lights at infinity. `to_world` of an envmap: the columns of its linear part (a rotation,
+    // possibly mirrored, times a uniform scale; anything else is refused). `direction` of a
+    // directional light: where its light travels (Mitsuba's `direction`).
+    static Light constant(const Rgb &radiance);
+    static Light envmap(std::shared_ptr<const Texture> image, double scale, const Vec3 to_world_columns[3]);
+    static Light directional(const Vec3 &direction, const Rgb &irradiance);
+
     Type type() const { return type_; }
+    bool is_infinite() const { return type_ == Type::Constant || type_ == Type::Envmap || type_ == Type::Directional; }
+    // Whether a camera ray that leaves the scene in some direction sees this light.
+    bool is_environment() const { return type_ == Type::Constant || type_ == Type::Envmap; }
+    // Radiance arriving from direction `towards` (unit, world, pointing away from the scene)
+    // of an environment light (constant, envmap); black for every other light.
+    Rgb environment(const Vec3 &towards) const;
+    // Solid-angle density sample_direct draws `towards` with (environment lights only).
+    double pdf_direct(const Vec3 &towards) const;
+    // The scene's bounding sphere, which photons from lights at infinity are aimed at; sets
+    // their power. The renderer calls it with the committed scene's bounds.
+    void set_scene_sphere(const Vec3 &center, double radius);
+    const EnvironmentMap *environment_map() const { return env_.get(); }
     Rgb power() const { return power_; }
 
     // A photon from four uniform numbers in [0, 1). Area lights start it `surface_offset`
@@ -102,16 +130,19 @@ private:
     Type type_ = Type::Point;
     Rgb color_; // intensity (point, spot) or radiance (area)
     Rgb power_;
-    Vec3 position_;        // point/spot position, quad origin, sphere centre
+    Vec3 position_;        // point/spot position, quad origin, sphere centre, scene sphere centre
+    Vec3 direction_;       // directional: towards the light (minus Mitsuba's direction)
     Vec3 edge_u_, edge_v_; // quad edges, disk axes; cylinder: p1 - p0 in edge_u_
-    Frame frame_;          // spot: n = axis; quad: n = unit normal
+    Frame frame_;          // spot: n = axis; quad: n = unit normal; envmap: columns of to_world in s, t, n
     double area_ = 0;
     double radius_ = 0;
     double cos_cutoff_ = 0, cos_beam_ = 1, cutoff_ = 0, beam_ = 0;
     double surface_offset_ = 0;
     double normal_sign_ = 1; // -1 when flip_normals
     std::shared_ptr<const MeshTable> table_;
-    uint32_t geom_id_ = 0xFFFFFFFFu; // PPM_INVALID_ID
+    double scene_radius_ = 0;                   // lights at infinity: bounding sphere
+    std::shared_ptr<const EnvironmentMap> env_; // envmap
+    uint32_t geom_id_ = 0xFFFFFFFFu;            // PPM_INVALID_ID
 };
 
 } // namespace ppm

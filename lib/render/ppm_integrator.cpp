@@ -31,7 +31,10 @@ template <class Emit> void PpmIntegrator::trace_split_path(const PassInputs &in,
     ppm_ray ray = start;
     SurfacePoint sp;
     for (; depth < in.settings.max_depth; ++depth) {
-        if (!in.scene.intersect(ray, sp, leaving)) return;
+        if (!in.scene.intersect(ray, sp, leaving)) {
+            emit(nullptr, weight * in.scene.environment(Vec3::from(ray.dir))); // lights at infinity
+            return;
+        }
         leaving = &sp.hit; // every ray below is spawned from this hit
         length += sp.hit.t;
         emit(nullptr, weight * sp.emitted);

@@ -70,6 +70,15 @@ RenderScene::RenderScene(const Scene &scene, const SceneShading &shading) : scen
         if (!geometry_emission_.back().is_black())
             lights_.push_back(area_light(g, id, geometry_emission_.back(), offset));
     }
+    // Lights at infinity aim their photons at the committed scene's bounding sphere, a little
+    // enlarged (as Mitsuba's set_scene) so that they start outside every surface.
+    const Box3 &bounds = scene.bounds();
+    const Vec3 center = bounds.empty() ? Vec3{0, 0, 0} : bounds.center();
+    const double radius = bounds.empty() ? 1e-4 : std::max(1e-4, 0.5 * bounds.diagonal() * (1 + 1e-4) + offset);
+    for (size_t i = 0; i < lights_.size(); ++i) {
+        lights_[i].set_scene_sphere(center, radius);
+        if (lights_[i].is_environment()) environment_lights_.push_back(i);
+    }
     double sum = 0;
     for (const Light &light : lights_) {
         total_power_ += light.power();
@@ -84,6 +93,14 @@ size_t RenderScene::pick_light(double u, double *probability) const {
                                       lights_.size() - 1);
     *probability = light_cdf_[i] - (i > 0 ? light_cdf_[i - 1] : 0.0);
     return i;
+}
+
+Rgb RenderScene::environment(const Vec3 &direction) const {
+    Rgb sum;
+    if (environment_lights_.empty()) return sum;
+    const Vec3 d = normalize(direction);
+    for (size_t i : environment_lights_) sum += lights_[i].environment(d);
+    return sum;
 }
 
 bool RenderScene::intersect(const ppm_ray &ray, SurfacePoint &out, const ppm_hit *leaving) const {

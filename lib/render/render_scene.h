@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // What the renderer reads of a committed scene, gathered once when a renderer is created:
-// the lights (point and spot lights plus one area light per emitting geometry) with
+// the lights (point, spot and lights at infinity, plus one area light per emitting geometry;
+// lights at infinity are given the scene's bounding sphere) with
 // the probabilities photons pick them by, and a material for every geometry.
 #pragma once
 
@@ -57,6 +58,10 @@ public:
     // Whether any material stores visible points that evaluate the whole BSDF per photon
     // (Bsdf::needs_full_eval and gathers(gather_alpha)): DensityEstimator::reset's full_lobes.
     bool gathers_full_lobes(double gather_alpha) const;
+    // Radiance arriving from the environment lights (constant, envmap) along `direction`
+    // (any length), which a ray that leaves the scene sees; black without such lights.
+    Rgb environment(const Vec3 &direction) const;
+    bool has_environment() const { return !environment_lights_.empty(); }
     // Area light radiance of a geometry (black for most).
     const Rgb &emission(uint32_t geom_id) const { return geometry_emission_[geom_id]; }
 
@@ -68,7 +73,8 @@ private:
     std::vector<Material> geometry_materials_; // one per geometry
     std::vector<Rgb> geometry_emission_;       // one per geometry
     std::vector<Light> lights_;
-    std::vector<double> light_cdf_; // cumulative selection probabilities
+    std::vector<size_t> environment_lights_; // indices into lights_
+    std::vector<double> light_cdf_;          // cumulative selection probabilities
     Rgb total_power_;
 };
 

@@ -64,7 +64,13 @@ Rgb SppmIntegrator::follow_path(const PassInputs &in, CounterRng &rng, ppm_ray r
     vp.valid = false;
     Rgb weight(1.0), direct;
     double length = 0;
-    for (int depth = 0; found; ++depth) {
+    for (int depth = 0;; ++depth) {
+        // A camera ray, or one after specular bounces, that leaves the scene sees the
+        // environment (lights at infinity).
+        if (!found) {
+            direct += weight * in.scene.environment(Vec3::from(ray.dir));
+            break;
+        }
         length += sp.hit.t;
         direct += weight * sp.emitted;
         const double u_lobe = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();

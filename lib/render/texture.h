@@ -29,6 +29,8 @@ public:
     Texture(int width, int height, std::vector<float> rgb, std::string name);
 
     Rgb lookup(double u, double v) const;
+    // Pixel (x, y) from the top-left, wrapped into the image.
+    Rgb pixel(long x, long y) const { return texel(x, y); }
 
     int width() const { return width_; }
     int height() const { return height_; }

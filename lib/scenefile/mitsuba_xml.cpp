@@ -54,7 +54,7 @@ const std::set<std::string> &object_tags() {
 const std::set<std::string> &renderable(const std::string &tag) {
     static const std::map<std::string, std::set<std::string>> types = {
         {"bsdf", {"diffuse", "conductor", "roughconductor", "dielectric", "plastic", "twosided"}},
-        {"emitter", {"point", "spot", "area"}},
+        {"emitter", {"point", "spot", "area", "constant", "envmap", "directional"}},
         {"shape", {"sphere", "rectangle", "disk", "cylinder", "cube", "obj", "ply", "serialized", "bezier"}},
         {"texture", {"bitmap"}}};
     static const std::set<std::string> none;
