@@ -114,8 +114,11 @@ double Bsdf::specular_probability(const Vec3 &wo) const {
     switch (type_) {
     case Type::Diffuse: return 0.0;
     case Type::Mirror:
-    case Type::Dielectric: return 1.0;
+    case Type::Dielectric:
+    case Type::ThinDielectric: return 1.0;
     case Type::Coated: return coat_specular_probability(fresnel_dielectric(std::fabs(wo.z), eta_));
+    case Type::RoughDielectric:
+    case Type::RoughPlastic: return 0.0;
     }
     return 0.0;
 }
@@ -141,6 +144,8 @@ BsdfSample Bsdf::sample(const Vec3 &wo, double u_lobe, double u1, double u2, Tra
         if (mode == TransportMode::Radiance) s.weight = Rgb(1.0 / (eta_t * eta_t));
         return s;
     }
+    if (type_ == Type::ThinDielectric) return sample_thin_dielectric(wo, u_lobe);
+    if (type_ == Type::RoughDielectric) return sample_rough_dielectric(wo, u_lobe, u1, u2, mode);
 
     // Opaque: work on the side of wo, flip back at the end.
     const bool back = wo.z < 0;
@@ -174,14 +179,18 @@ BsdfSample Bsdf::sample(const Vec3 &wo, double u_lobe, double u1, double u2, Tra
         }
         break;
     }
-    case Type::Dielectric: break;
+    case Type::RoughPlastic: s = sample_rough_plastic(w, u_lobe, u1, u2); break;
+    case Type::Dielectric:
+    case Type::ThinDielectric:
+    case Type::RoughDielectric: break;
     }
     if (!(s.pdf > 0)) return BsdfSample{};
     if (back) s.wi = flip_z(s.wi);
     return s;
 }
 
-Rgb Bsdf::eval(const Vec3 &wo, const Vec3 &wi) const {
+Rgb Bsdf::eval(const Vec3 &wo, const Vec3 &wi, TransportMode mode) const {
+    if (type_ == Type::RoughDielectric) return eval_rough_dielectric(wo, wi, mode);
     if (!(wo.z * wi.z > 0)) return Rgb();
     switch (type_) {
     case Type::Diffuse: return reflectance_ * kInvPi;
@@ -190,8 +199,11 @@ Rgb Bsdf::eval(const Vec3 &wo, const Vec3 &wi) const {
         const double fresnel_i = fresnel_dielectric(std::fabs(wi.z), eta_);
         return reflectance_ * (coat_diffuse_scale_ * (1.0 - fresnel_o) * (1.0 - fresnel_i) * kInvPi);
     }
+    case Type::RoughPlastic: return wo.z > 0 ? eval_rough_plastic(wo, wi) : eval_rough_plastic(flip_z(wo), flip_z(wi));
     case Type::Mirror:
-    case Type::Dielectric: break;
+    case Type::Dielectric:
+    case Type::ThinDielectric:
+    case Type::RoughDielectric: break;
     }
     return Rgb();
 }
@@ -207,20 +219,30 @@ FixedWoLobe Bsdf::fixed_wo(const Vec3 &wo, const Rgb &weight) const {
         lobe.eta_ = eta_;
         lobe.coat_ = true;
         break;
+    case Type::RoughPlastic:
+        lobe.factor_ = weight;
+        lobe.full_ = true;
+        break;
     case Type::Mirror:
-    case Type::Dielectric: break;
+    case Type::Dielectric:
+    case Type::ThinDielectric:
+    case Type::RoughDielectric: break;
     }
     return lobe;
 }
 
 double Bsdf::pdf(const Vec3 &wo, const Vec3 &wi) const {
+    if (type_ == Type::RoughDielectric) return pdf_rough_dielectric(wo, wi);
     if (!(wo.z * wi.z > 0)) return 0.0;
     const double cosine_pdf = std::fabs(wi.z) * kInvPi;
     switch (type_) {
     case Type::Diffuse: return cosine_pdf;
     case Type::Coated: return (1.0 - coat_specular_probability(fresnel_dielectric(std::fabs(wo.z), eta_))) * cosine_pdf;
+    case Type::RoughPlastic: return wo.z > 0 ? pdf_rough_plastic(wo, wi) : pdf_rough_plastic(flip_z(wo), flip_z(wi));
     case Type::Mirror:
-    case Type::Dielectric: break;
+    case Type::Dielectric:
+    case Type::ThinDielectric:
+    case Type::RoughDielectric: break;
     }
     return 0.0;
 }
