@@ -2,6 +2,7 @@
 #include "render/bsdf.h"
 
 #include "core/error.h"
+#include "render/fresnel.h"
 #include "render/warp.h"
 
 #include <algorithm>
@@ -114,13 +115,37 @@ double Bsdf::specular_probability(const Vec3 &wo) const {
     switch (type_) {
     case Type::Diffuse: return 0.0;
     case Type::Mirror:
+    case Type::Conductor:
     case Type::Dielectric:
     case Type::ThinDielectric: return 1.0;
     case Type::Coated: return coat_specular_probability(fresnel_dielectric(std::fabs(wo.z), eta_));
+    case Type::RoughConductor:
     case Type::RoughDielectric:
     case Type::RoughPlastic: return 0.0;
     }
     return 0.0;
+}
+
+bool Bsdf::gathers(double gather_alpha) const {
+    switch (type_) {
+    case Type::Diffuse:
+    case Type::Coated: return true;
+    case Type::RoughConductor: return std::min(distribution_.alpha_u(), distribution_.alpha_v()) >= gather_alpha;
+    // Rough plastic is gathered whole, coat included, whatever its roughness: a continued coat
+    // would need a visible point that evaluates the base alone (Bsdf has no such query yet).
+    case Type::RoughPlastic: return true;
+    case Type::Mirror:
+    case Type::Conductor:
+    case Type::Dielectric:
+    case Type::ThinDielectric:
+    case Type::RoughDielectric: return false;
+    }
+    return false;
+}
+
+double Bsdf::gather_probability(const Vec3 &wo, double gather_alpha) const {
+    if (!gathers(gather_alpha)) return 0.0;
+    return type_ == Type::Coated ? 1.0 - specular_probability(wo) : 1.0;
 }
 
 BsdfSample Bsdf::sample(const Vec3 &wo, double u_lobe, double u1, double u2, TransportMode mode) const {
@@ -162,6 +187,13 @@ BsdfSample Bsdf::sample(const Vec3 &wo, double u_lobe, double u1, double u2, Tra
         s.is_specular = true;
         s.weight = reflectance_;
         break;
+    case Type::Conductor:
+        s.wi = reflect_local(w);
+        s.pdf = 1.0;
+        s.is_specular = true;
+        s.weight = reflectance_ * fresnel_conductor(w.z, conductor_eta_, conductor_k_);
+        break;
+    case Type::RoughConductor: s = sample_rough_conductor(w, u1, u2); break;
     case Type::Coated: {
         const double fresnel_o = fresnel_dielectric(w.z, eta_);
         const double p_specular = coat_specular_probability(fresnel_o);
@@ -199,8 +231,11 @@ Rgb Bsdf::eval(const Vec3 &wo, const Vec3 &wi, TransportMode mode) const {
         const double fresnel_i = fresnel_dielectric(std::fabs(wi.z), eta_);
         return reflectance_ * (coat_diffuse_scale_ * (1.0 - fresnel_o) * (1.0 - fresnel_i) * kInvPi);
     }
+    case Type::RoughConductor:
+        return wo.z > 0 ? eval_rough_conductor(wo, wi) : eval_rough_conductor(flip_z(wo), flip_z(wi));
     case Type::RoughPlastic: return wo.z > 0 ? eval_rough_plastic(wo, wi) : eval_rough_plastic(flip_z(wo), flip_z(wi));
     case Type::Mirror:
+    case Type::Conductor:
     case Type::Dielectric:
     case Type::ThinDielectric:
     case Type::RoughDielectric: break;
@@ -219,11 +254,13 @@ FixedWoLobe Bsdf::fixed_wo(const Vec3 &wo, const Rgb &weight) const {
         lobe.eta_ = eta_;
         lobe.coat_ = true;
         break;
+    case Type::RoughConductor:
     case Type::RoughPlastic:
         lobe.factor_ = weight;
         lobe.full_ = true;
         break;
     case Type::Mirror:
+    case Type::Conductor:
     case Type::Dielectric:
     case Type::ThinDielectric:
     case Type::RoughDielectric: break;
@@ -238,8 +275,11 @@ double Bsdf::pdf(const Vec3 &wo, const Vec3 &wi) const {
     switch (type_) {
     case Type::Diffuse: return cosine_pdf;
     case Type::Coated: return (1.0 - coat_specular_probability(fresnel_dielectric(std::fabs(wo.z), eta_))) * cosine_pdf;
+    case Type::RoughConductor:
+        return wo.z > 0 ? pdf_rough_conductor(wo, wi) : pdf_rough_conductor(flip_z(wo), flip_z(wi));
     case Type::RoughPlastic: return wo.z > 0 ? pdf_rough_plastic(wo, wi) : pdf_rough_plastic(flip_z(wo), flip_z(wi));
     case Type::Mirror:
+    case Type::Conductor:
     case Type::Dielectric:
     case Type::ThinDielectric:
     case Type::RoughDielectric: break;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // Surface scattering: Lambertian diffuse, perfect mirror, smooth dielectric (glass), a
-// smooth dielectric coat over a diffuse base (glazed porcelain, Mitsuba's `plastic`), and the
+// smooth dielectric coat over a diffuse base (glazed porcelain, Mitsuba's `plastic`),
+// smooth and rough conductors (metals with a complex index of refraction, Mitsuba's
+// `conductor` and `roughconductor`; the rough one's math in bsdf_conductor.cpp), and the
 // rest of Mitsuba's dielectric family (bsdf_dielectric.cpp): a thin sheet of glass
 // (`thindielectric`), a rough interface (`roughdielectric`) and a rough coat over a diffuse
 // base (`roughplastic`), the rough ones on a microfacet distribution (render/microfacet.h).
@@ -28,7 +30,8 @@
 //
 // Sides: the opaque materials (diffuse, mirror, coated) are two-sided, like Mitsuba's
 // `twosided` adapter: the model is evaluated on the side of wo (the shading normal is
-// flipped to wo's side), and wi on the other side gets nothing. Glass uses the sign of
+// flipped to wo's side), and wi on the other side gets nothing. The conductors are two-sided
+// the same way (Mitsuba's are one-sided; wrap them in `twosided` there to compare). Glass uses the sign of
 // cos(wo) = wo.z: wo.z > 0 is outside (ext_ior), wo.z < 0 inside (int_ior), so a glass
 // surface's normal must point outwards; the rough interface likewise. The thin sheet is
 // symmetric (both faces alike). Rough plastic is two-sided like the coated model (Mitsuba's is
@@ -77,17 +80,21 @@ inline double fresnel_dielectric(double cos_i, double eta) {
 double fresnel_diffuse_reflectance(double eta);
 
 // eval() at one wo for many wi (the photons landing at a visible point), with what depends
-// on wo alone computed once: eval(wo, wi) = at(wi.z) * sign-matched, see Bsdf::fixed_wo.
+// on wo alone computed once. The diffuse and coated lobes depend on cos(wi) only and are
+// evaluated by at(); lobes that depend on the whole of wi (rough conductors) are marked
+// needs_full_eval() and the caller evaluates weight * Bsdf::eval(wo, wi) itself (the density
+// estimator keeps the Bsdf, frame and wo of such points aside).
 class FixedWoLobe {
 public:
     // f(wo, wi) times `weight` (given to Bsdf::fixed_wo) for cos_wi = wi.z taken on wo's side
-    // of the shading normal (wi.z * sign(wo.z)); zero when wi is on the other side.
+    // of the shading normal (wi.z * sign(wo.z)); zero when wi is on the other side. Not for
+    // needs_full_eval() lobes.
     Rgb at(double cos_wi) const {
         if (!(cos_wi > 0)) return Rgb();
         return coat_ ? factor_ * (1.0 - fresnel_dielectric(cos_wi, eta_)) : factor_;
     }
-    // Lobes that depend on the whole of wi (rough plastic): the caller evaluates
-    // weight * Bsdf::eval(wo, wi) itself; at() is not for them.
+    // Lobes that depend on the whole of wi (rough conductor, rough plastic): the caller
+    // evaluates weight * Bsdf::eval(wo, wi) itself; at() is not for them.
     bool needs_full_eval() const { return full_; }
 
 private:
@@ -102,7 +109,17 @@ struct RoughCoatTable; // bsdf_dielectric.cpp
 
 class Bsdf {
 public:
-    enum class Type : uint8_t { Diffuse, Mirror, Dielectric, Coated, ThinDielectric, RoughDielectric, RoughPlastic };
+    enum class Type : uint8_t {
+        Diffuse,
+        Mirror,
+        Dielectric,
+        Coated,
+        Conductor,
+        RoughConductor,
+        ThinDielectric,
+        RoughDielectric,
+        RoughPlastic,
+    };
 
     // Black diffuse: scatters nothing (a placeholder that needs no validation).
     Bsdf() = default;
@@ -123,6 +140,17 @@ public:
     // albedo(wo) = F + (1 - F) R_d <= 1 and f is symmetric. Mitsuba approximates Fdr by a
     // fitted polynomial; we integrate it (f differs from Mitsuba 3.9.1 by 0.12 % at eta 1.5).
     static Bsdf coated(const Rgb &diffuse_reflectance, double int_ior, double ext_ior);
+    // Mitsuba 3 `conductor` (src/bsdfs/conductor.cpp): a smooth metal reflecting
+    // specular_reflectance * F(cos wo) with F the unpolarised Fresnel reflectance of the
+    // complex index eta + i k (render/fresnel.h). eta, k finite and >= 0 per channel. (With
+    // Mitsuba's default material "none", eta 0 and k 1, F = 1: use mirror().)
+    static Bsdf conductor(const Rgb &eta, const Rgb &k, const Rgb &specular_reflectance);
+    // Mitsuba 3 `roughconductor` (src/bsdfs/roughconductor.cpp): the Torrance-Sparrow
+    // microfacet model f = R F(wo.h) D(h) G(wo, wi, h) / (4 cos wo cos wi), h the half
+    // vector, sampled through the distribution of visible normals (or all normals with
+    // sample_visible = false). alpha_u, alpha_v finite and > 0.
+    static Bsdf rough_conductor(MicrofacetType distribution, double alpha_u, double alpha_v, const Rgb &eta,
+                                const Rgb &k, const Rgb &specular_reflectance, bool sample_visible = true);
     // Mitsuba 3 `thindielectric`: a thin sheet of glass (a window pane) reflecting
     // R' = R + T^2 R / (1 - R^2) = 2R / (1 + R) (R = F(|cos wo|), T = 1 - R: the sum over the
     // internal bounces) and letting 1 - R' straight through (wi = -wo). Both lobes specular, the
@@ -150,15 +178,18 @@ public:
     Bsdf with_reflectance(const Rgb &reflectance) const;
 
     Type type() const { return type_; }
-    // Whether eval()/pdf() can be non-zero (where photons can be gathered).
-    // The rough interface is not: it is always continued by sampling, never gathered (photons
-    // refracted through it arrive from behind the visible point's surface, which the density
-    // estimate rejects), in both modes.
+    // Whether eval()/pdf() can be non-zero and visible points may be stored. Not the rough
+    // interface, although its eval() is: it is always continued by sampling, never gathered
+    // (photons refracted through it arrive from behind the visible point's surface, which the
+    // density estimate rejects, and its lobes are as narrow as its roughness), in both modes.
     bool has_non_specular() const {
-        return type_ == Type::Diffuse || type_ == Type::Coated || type_ == Type::RoughPlastic;
+        return type_ == Type::Diffuse || type_ == Type::Coated || type_ == Type::RoughConductor ||
+               type_ == Type::RoughPlastic;
     }
     const Rgb &reflectance() const { return reflectance_; }
     double eta() const { return eta_; } // int_ior / ext_ior
+    const Rgb &conductor_eta() const { return conductor_eta_; }
+    const Rgb &conductor_k() const { return conductor_k_; }
     const MicrofacetDistribution &distribution() const { return distribution_; }
     // Rough plastic's coat: its tabulated transmittance for light from outside at cos_theta,
     // and its internal diffuse reflectance (1 and 0 for other types).
@@ -167,9 +198,31 @@ public:
     // The thin sheet's total reflectance 2R / (1 + R) at cos(wo).
     double thin_dielectric_reflectance(double cos_wo) const;
 
-    // Probability that sample() picks a specular lobe for this wo: 1 for mirror and glass,
-    // 0 for diffuse, the coat's Fresnel-steered share for coated.
+    // Probability that sample() picks a specular lobe for this wo: 1 for mirror, glass and
+    // the smooth conductor, 0 for diffuse and the rough conductor, the coat's Fresnel-steered
+    // share for coated.
     double specular_probability(const Vec3 &wo) const;
+
+    // Visible points (density estimation) versus continued paths. A camera path that meets
+    // this BSDF either stops and stores a visible point, where photons are gathered with
+    // eval() (fixed_wo()), or continues by sampling, like at a mirror. The rule, per lobe:
+    // specular lobes continue; diffuse lobes are gathered; a microfacet lobe of roughness
+    // min(alpha_u, alpha_v) >= gather_alpha (the render setting glossy_gather_alpha) is
+    // gathered, a smoother one continues. Why: the photon estimate at a visible point
+    // averages photons over a disc of radius r, which blurs the reflected image by about
+    // r / distance and adds variance inversely proportional to the lobe's solid angle; both
+    // vanish as r -> 0 (the estimate is consistent) but for a narrow lobe they dominate,
+    // while continuing the path costs one more segment and is unbiased. Emission found after
+    // a continued bounce is counted as after a specular one (no light sampling there).
+    //
+    // Whether visible points (and photons) can be stored at this material at all.
+    bool gathers(double gather_alpha) const;
+    // The probability of stopping at a visible point for this wo: the integrator stops when
+    // u_lobe >= 1 - gather_probability and otherwise calls sample() with the same u_lobe,
+    // which then picks a continued lobe (the coat's reflection, or the one rough lobe).
+    // The visible point's weight is divided by gather_probability; sample()'s weight already
+    // accounts for its lobe choice.
+    double gather_probability(const Vec3 &wo, double gather_alpha) const;
 
     // Samples wi given wo, from uniform numbers in [0, 1): u_lobe picks the lobe, (u1, u2) the
     // direction. Returns pdf == 0 (invalid) when nothing scatters.
@@ -184,6 +237,10 @@ public:
 
 private:
     double coat_specular_probability(double fresnel_o) const;
+    // The conductors' parts (bsdf_conductor.cpp); w on the side of the shading normal.
+    BsdfSample sample_rough_conductor(const Vec3 &w, double u1, double u2) const;
+    Rgb eval_rough_conductor(const Vec3 &w, const Vec3 &wi) const;
+    double pdf_rough_conductor(const Vec3 &w, const Vec3 &wi) const;
     // The dielectric family's parts (bsdf_dielectric.cpp). The rough plastic's take w on the
     // side of the shading normal.
     BsdfSample sample_thin_dielectric(const Vec3 &wo, double u_lobe) const;
@@ -201,7 +258,8 @@ private:
     double eta_ = 1;
     double coat_diffuse_scale_ = 1;              // 1 / (1 - Fdr); rough plastic 1 / (eta^2 (1 - R_int))
     double specular_sampling_weight_ = 1;        // Mitsuba's s_mean / (s_mean + d_mean)
-    MicrofacetDistribution distribution_;        // rough dielectric, rough plastic
+    Rgb conductor_eta_, conductor_k_;            // complex index of refraction (conductors)
+    MicrofacetDistribution distribution_;        // rough conductor, rough dielectric, rough plastic
     const RoughCoatTable *coat_table_ = nullptr; // rough plastic (interned, immortal)
 };
 

@@ -24,7 +24,6 @@ namespace {
 
 double sqr(double x) { return x * x; }
 Vec3 reflect_local(const Vec3 &w) { return {-w.x, -w.y, w.z}; }
-Vec3 flip_z(const Vec3 &w) { return {w.x, w.y, -w.z}; }
 Vec3 mulsign_z(const Vec3 &w, double s) { return s < 0 ? -w : w; }
 Vec3 reflect_about(const Vec3 &w, const Vec3 &m) { return 2.0 * dot(w, m) * m - w; }
 
