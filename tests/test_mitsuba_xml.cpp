@@ -205,9 +205,9 @@ void spectra_become_the_rgb_mitsuba_gives_them(void **) {
 
 void lenient_mode_substitutes_with_a_warning_and_strict_mode_keeps_the_type(void **) {
     const std::string path = write("rough.xml", R"(<scene version="3.0.0">
-    <emitter type="envmap"><string name="filename" value="sky.exr"/></emitter>
+    <emitter type="sunsky"><string name="filename" value="sky"/></emitter>
     <shape type="sphere">
-        <bsdf type="roughconductor"><float name="alpha" value="0.1"/></bsdf>
+        <bsdf type="hair"><float name="alpha" value="0.1"/></bsdf>
     </shape>
     <medium type="homogeneous" id="fog"/>
 </scene>
@@ -219,8 +219,8 @@ void lenient_mode_substitutes_with_a_warning_and_strict_mode_keeps_the_type(void
     assert_false(scene.root.isMember("emitters"));
     std::string warnings;
     for (const std::string &w : scene.warnings) warnings += w + "\n";
-    assert_contains(warnings, "rough.xml:2:5: <emitter>: emitter type 'envmap' is not rendered by libppm: skipped");
-    assert_contains(warnings, "rough.xml:4:9: <bsdf>: BSDF type 'roughconductor'");
+    assert_contains(warnings, "rough.xml:2:5: <emitter>: emitter type 'sunsky' is not rendered by libppm: skipped");
+    assert_contains(warnings, "rough.xml:4:9: <bsdf>: BSDF type 'hair'");
     assert_contains(warnings, "rough.xml:6:5: <medium>");
 
     // Strict: the medium is refused here; the BSDF and emitter types pass on to the builder,

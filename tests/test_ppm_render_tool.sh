@@ -111,7 +111,7 @@ cat >ball.xml <<'XML'
     <transform name="to_world"><lookat origin="0, -5, 1" target="0, 0, 1" up="0, 0, 1"/></transform>
     <film type="hdrfilm"><integer name="width" value="$res"/><integer name="height" value="30"/></film>
   </sensor>
-  <shape type="sphere"><bsdf type="roughconductor"/></shape>
+  <shape type="sphere"><bsdf type="hair"/></shape>
   <emitter type="point"><point name="position" x="0" y="-2" z="3"/></emitter>
 </scene>
 XML

@@ -461,6 +461,56 @@ PPM_API ppm_status ppm_scene_add_spot_light(ppm_scene scene, const double positi
  * Black turns it off. Errors: INVALID_ARGUMENT (other kinds, negative or NaN values). */
 PPM_API ppm_status ppm_scene_set_geometry_emission(ppm_scene scene, uint32_t geom_id, const double radiance[3]);
 
+/* Materials, textures and lights by type name and named parameters, as Mitsuba 3's load_dict
+ * takes them: `type` and every parameter name are Mitsuba 3's (docs/scene-format.md lists the
+ * types and their parameters), and a parameter left out takes Mitsuba's default. New types
+ * and parameters arrive without changing the ABI. A parameter is one of:
+ *   PPM_PARAM_NUMBERS   `count` doubles at `numbers`: 1 for a float, an integer or a boolean
+ *                       (0 or 1), 3 for an RGB colour, a point or a vector, 16 for a 4x4
+ *                       transform in row-major order (`to_world`, `to_uv`); a colour may
+ *                       also be given as 1 number (grey);
+ *   PPM_PARAM_STRING    `string`: a name (`distribution`, `material`) or a file name;
+ *   PPM_PARAM_MATERIAL  `id`: a material of this scene (the nested BSDFs of `blendbsdf`,
+ *                       `mask`, `twosided`);
+ *   PPM_PARAM_TEXTURE   `id`: a texture of this scene, for a colour or float parameter that
+ *                       takes one (`reflectance`, `weight`, ...).
+ * Zero-initialise unused fields. Every parameter given must be used by the type: an unknown
+ * name, a repeated one, or one of the wrong kind is an error naming it (with a suggestion for
+ * a likely misspelling), so that nothing is silently ignored. The id goes to *out_id (may be
+ * NULL); materials, textures and lights number from 0 in the order they are added, by these
+ * functions and the typed ones above alike. Ownership: nothing is kept of `params` or its
+ * strings after the call. Thread rules: as for the typed functions above.
+ * Errors: INVALID_ARGUMENT (NULL scene, type or name; unknown type or parameter; a value out
+ * of range, naming the parameter), IO (a file that cannot be read, named). */
+typedef enum ppm_param_type {
+    PPM_PARAM_NUMBERS = 0,
+    PPM_PARAM_STRING = 1,
+    PPM_PARAM_MATERIAL = 2,
+    PPM_PARAM_TEXTURE = 3
+} ppm_param_type;
+
+typedef struct ppm_param {
+    const char *name; /* Mitsuba's parameter name, e.g. "alpha", "eta", "filename" */
+    ppm_param_type type;
+    const double *numbers; /* PPM_PARAM_NUMBERS */
+    size_t count;
+    const char *string; /* PPM_PARAM_STRING */
+    uint32_t id;        /* PPM_PARAM_MATERIAL, PPM_PARAM_TEXTURE */
+} ppm_param;
+
+/* A material (`diffuse`, `conductor`, `dielectric`, `plastic`, `twosided`, and the types listed
+ * in docs/scene-format.md). */
+PPM_API ppm_status ppm_scene_add_material(ppm_scene scene, const char *type, const ppm_param *params,
+                                          size_t param_count, uint32_t *out_material_id);
+/* A texture (`bitmap`, and the types listed in docs/scene-format.md) for materials' colour
+ * parameters. Texture ids are their own sequence, apart from materials'. */
+PPM_API ppm_status ppm_scene_add_texture(ppm_scene scene, const char *type, const ppm_param *params, size_t param_count,
+                                         uint32_t *out_texture_id);
+/* A light that is not a shape (`point`, `spot`, and the types listed in
+ * docs/scene-format.md); area lights are emission on a geometry (above). */
+PPM_API ppm_status ppm_scene_add_light(ppm_scene scene, const char *type, const ppm_param *params, size_t param_count,
+                                       uint32_t *out_light_id);
+
 /* ---------------------------------------------------------------------------------------- */
 /* Rendering: progressive photon mapping                                                     */
 /* ---------------------------------------------------------------------------------------- */

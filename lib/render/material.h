@@ -17,6 +17,13 @@ struct TextureMapping {
     double offset_u = 0, offset_v = 0;
 };
 
+// A texture of the scene (ppm_scene_add_texture): an image and how surface coordinates map
+// onto it. Materials that use it copy it.
+struct TextureRef {
+    std::shared_ptr<const Texture> texture;
+    TextureMapping mapping;
+};
+
 struct Material {
     Bsdf bsdf;
     // Replaces the BSDF's reflectance (diffuse colour, coat base or mirror tint) when set;

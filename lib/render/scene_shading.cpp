@@ -20,6 +20,19 @@ Material &SceneShading::material(uint32_t material_id) {
     return materials_[material_id];
 }
 
+uint32_t SceneShading::add_texture(TextureRef texture) {
+    if (textures_.size() >= PPM_INVALID_ID - 1) invalid_argument("too many textures in a scene");
+    textures_.push_back(std::move(texture));
+    return static_cast<uint32_t>(textures_.size() - 1);
+}
+
+const TextureRef &SceneShading::texture(uint32_t texture_id) const {
+    if (texture_id >= textures_.size())
+        invalid_argument("texture id " + std::to_string(texture_id) + " does not exist (the scene has " +
+                         std::to_string(textures_.size()) + " textures)");
+    return textures_[texture_id];
+}
+
 uint32_t SceneShading::add_light(Light light) {
     if (lights_.size() >= PPM_INVALID_ID - 1) invalid_argument("too many lights in a scene");
     lights_.push_back(light);

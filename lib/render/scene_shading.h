@@ -19,6 +19,8 @@ public:
     uint32_t add_material(Material material);
     Material &material(uint32_t material_id); // throws INVALID_ARGUMENT for a bad id
     const std::vector<Material> &materials() const { return materials_; }
+    uint32_t add_texture(TextureRef texture);
+    const TextureRef &texture(uint32_t texture_id) const; // throws INVALID_ARGUMENT for a bad id
     uint32_t add_light(Light light);
     const std::vector<Light> &lights() const { return lights_; }
     // Area light radiance of a geometry by id; black (the default) for one that emits nothing.
@@ -27,6 +29,7 @@ public:
 
 private:
     std::vector<Material> materials_;
+    std::vector<TextureRef> textures_;
     std::vector<Light> lights_;
     std::vector<Rgb> emission_; // by geometry id, as far as set
 };

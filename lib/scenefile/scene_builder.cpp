@@ -3,6 +3,7 @@
 
 #include "core/error.h"
 #include "geometry/cube_mesh.h"
+#include "scenefile/scene_params.h"
 #include "scenefile/transform.h"
 
 #include <sys/stat.h>
@@ -48,8 +49,14 @@ void SceneBuilder::add_bsdfs(const JsonNode &bsdfs) {
 
 std::uint32_t SceneBuilder::add_bsdf(const JsonNode &bsdf) {
     bsdf.require_object();
-    const std::string type = bsdf.at("type").one_of({"diffuse", "conductor", "dielectric", "plastic"});
+    const std::string type = bsdf.at("type").string();
     std::uint32_t id = 0;
+    if (type != "diffuse" && type != "conductor" && type != "dielectric" && type != "plastic") {
+        // Every other type as the API's material table reads it (it names unknown types).
+        const SceneParams params = params_of(bsdf);
+        params.check(ppm_scene_add_material(scene_, type.c_str(), params.data(), params.size(), &id));
+        return id;
+    }
     // The colour key, which may instead hold a bitmap texture.
     const char *color_key = nullptr;
     double default_color = 0.5;
@@ -113,6 +120,29 @@ std::uint32_t SceneBuilder::add_bsdf(const JsonNode &bsdf) {
     return id;
 }
 
+SceneParams SceneBuilder::params_of(const JsonNode &object) {
+    return SceneParams(
+        object, folder_, [this](const JsonNode &nested) { return nested_material(nested); },
+        [this](const JsonNode &nested) { return add_texture(nested); });
+}
+
+std::uint32_t SceneBuilder::nested_material(const JsonNode &bsdf) {
+    if (bsdf.is_object()) return add_bsdf(bsdf);
+    const std::string name = bsdf.string();
+    const auto found = named_bsdfs_.find(name);
+    if (found == named_bsdfs_.end()) bsdf.fail("no bsdf named '" + name + "' in bsdfs");
+    return found->second;
+}
+
+std::uint32_t SceneBuilder::add_texture(const JsonNode &texture) {
+    texture.require_object();
+    const std::string type = texture.at("type").string();
+    const SceneParams params = params_of(texture);
+    std::uint32_t id = 0;
+    params.check(ppm_scene_add_texture(scene_, type.c_str(), params.data(), params.size(), &id));
+    return id;
+}
+
 // ---------------------------------------------------------------------------------------------
 // emitters
 
@@ -123,7 +153,13 @@ void SceneBuilder::add_emitters(const JsonNode &emitters) {
 
 void SceneBuilder::add_emitter(const JsonNode &emitter) {
     emitter.require_object();
-    const std::string type = emitter.at("type").one_of({"point", "spot"});
+    const std::string type = emitter.at("type").string();
+    if (type != "point" && type != "spot") {
+        // Every other type as the API's light table reads it (it names unknown types).
+        const SceneParams params = params_of(emitter);
+        params.check(ppm_scene_add_light(scene_, type.c_str(), params.data(), params.size(), nullptr));
+        return;
+    }
     const std::array<double, 3> intensity =
         emitter.has("intensity") ? emitter.at("intensity").color(false) : std::array<double, 3>{1, 1, 1};
     if (type == "point") {
@@ -158,14 +194,7 @@ void SceneBuilder::add_shapes(const JsonNode &shapes) {
 }
 
 std::uint32_t SceneBuilder::shape_material(const JsonNode &shape) {
-    if (shape.has("bsdf")) {
-        const JsonNode bsdf = shape.at("bsdf");
-        if (bsdf.is_object()) return add_bsdf(bsdf);
-        const std::string name = bsdf.string();
-        const auto found = named_bsdfs_.find(name);
-        if (found == named_bsdfs_.end()) bsdf.fail("no bsdf named '" + name + "' in bsdfs");
-        return found->second;
-    }
+    if (shape.has("bsdf")) return nested_material(shape.at("bsdf"));
     if (!has_default_material_) {
         const double grey[3] = {0.5, 0.5, 0.5};
         check(shape, ppm_scene_add_diffuse_material(scene_, grey, &default_material_));

@@ -5,6 +5,7 @@
 #include <ppm/ppm.h>
 
 #include "scenefile/json_node.h"
+#include "scenefile/scene_params.h"
 
 #include <map>
 #include <string>
@@ -22,6 +23,10 @@ public:
 
 private:
     std::uint32_t add_bsdf(const JsonNode &bsdf);
+    // A member naming a bsdf of `bsdfs` or holding one.
+    std::uint32_t nested_material(const JsonNode &bsdf);
+    std::uint32_t add_texture(const JsonNode &texture);
+    SceneParams params_of(const JsonNode &object);
     std::uint32_t shape_material(const JsonNode &shape);
     void add_shape(const JsonNode &shape);
     void add_emitter(const JsonNode &emitter);

@@ -16,7 +16,7 @@ from .camera import Camera
 from .context import Context, default_context
 from .partial import Partial, check_image_path, write_image
 from .renderer import Renderer
-from .scene import Scene
+from .scene import MaterialId, Scene, TextureId
 from .quick_render import render
 from .scene_file import SceneFile, load, load_dict, load_file, load_string
 from .tessellate import Mesh, tessellate
@@ -38,6 +38,6 @@ __all__ = [
     "InvalidArgumentError", "InvalidOperationError", "OutOfMemoryError", "ParseError", "Status",
     "UnknownKeyError", "UnsupportedError", "Warning", "HIT_DTYPE", "RAY_DTYPE", "Hits", "Camera",
     "Context", "default_context", "Partial", "check_image_path", "write_image", "Renderer",
-    "Scene", "SceneFile", "load", "load_dict", "load_file", "load_string", "render", "Mesh",
+    "MaterialId", "Scene", "SceneFile", "TextureId", "load", "load_dict", "load_file", "load_string", "render", "Mesh",
     "tessellate", "INVALID_ID", "version",
 ]

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numbers
 import os
-from typing import Optional, Tuple, Union
+from typing import Dict, List, Optional, Tuple, Union
 
 import numpy as np
 
@@ -18,6 +18,37 @@ from .context import Context, resolve
 #: Mitsuba 3's default indices of refraction (glass and air).
 DEFAULT_INT_IOR = 1.5046
 DEFAULT_EXT_IOR = 1.000277
+
+
+class MaterialId(int):
+    """A material's id (an ``int``): given as a parameter it names a nested BSDF."""
+
+
+class TextureId(int):
+    """A texture's id (an ``int``) from :meth:`Scene.add_texture`, for colour parameters."""
+
+
+#: A value of :meth:`Scene.add_material`, :meth:`Scene.add_texture`, :meth:`Scene.add_light`.
+ParamValue = Union[bool, float, str, "os.PathLike[str]", ArrayLike, MaterialId, TextureId]
+
+# The kinds of ppm_param (ppm.h, ppm_param_type).
+_NUMBERS, _STRING, _MATERIAL, _TEXTURE = 0, 1, 2, 3
+
+
+def _params(params: Dict[str, ParamValue]) -> List[Tuple[str, int, List[float], str, int]]:
+    """Named parameters as the extension passes them to the C API."""
+    out: List[Tuple[str, int, List[float], str, int]] = []
+    for name, value in params.items():
+        if isinstance(value, MaterialId):
+            out.append((name, _MATERIAL, [], "", int(value)))
+        elif isinstance(value, TextureId):
+            out.append((name, _TEXTURE, [], "", int(value)))
+        elif isinstance(value, (str, os.PathLike)):
+            out.append((name, _STRING, [], os.fspath(value), 0))
+        else:
+            numbers = real_array(value, name, (), (None,), (4, 4))
+            out.append((name, _NUMBERS, [float(x) for x in np.ravel(numbers)], "", 0))
+    return out
 
 
 class Scene(Handle):
@@ -200,26 +231,50 @@ class Scene(Handle):
         return np.array(lower), np.array(upper)
 
     # -- materials, textures, lights ------------------------------------------------------
-    def add_diffuse_material(self, reflectance: ColorLike = 0.5) -> int:
-        """Lambertian material (Mitsuba ``diffuse``); RGB or grey reflectance in [0, 1]."""
-        return self._core_object.add_diffuse_material(color(reflectance, "reflectance"))
+    def add_material(self, type: str, **params: ParamValue) -> MaterialId:
+        """A material of any type libppm renders, with Mitsuba 3's type and parameter names
+        and defaults (``docs/scene-format.md`` lists them), as in Mitsuba's ``load_dict``::
 
-    def add_mirror_material(self, specular_reflectance: ColorLike = 1.0) -> int:
+            glass = scene.add_material("dielectric", int_ior=1.5)
+            shell = scene.add_material("twosided", bsdf=glass)
+
+        A value is a number or a bool, a sequence of numbers (a colour, a vector, a 4x4
+        transform), a string or path, a :class:`MaterialId` (nested BSDFs) or a
+        :class:`TextureId` (a colour from :meth:`add_texture`). An unknown parameter name is
+        an error (with a suggestion), never ignored.
+        """
+        return MaterialId(self._core_object.add_material(type, _params(params)))
+
+    def add_texture(self, type: str, **params: ParamValue) -> TextureId:
+        """A texture (Mitsuba ``bitmap`` and the other types of ``docs/scene-format.md``) to
+        give a material's colour parameter: ``add_material("diffuse", reflectance=tex)``."""
+        return TextureId(self._core_object.add_texture(type, _params(params)))
+
+    def add_light(self, type: str, **params: ParamValue) -> int:
+        """A light that is not a shape (Mitsuba ``point``, ``spot`` and the other emitter types
+        of ``docs/scene-format.md``); area lights are :meth:`set_emission`. Returns its id."""
+        return int(self._core_object.add_light(type, _params(params)))
+
+    def add_diffuse_material(self, reflectance: ColorLike = 0.5) -> MaterialId:
+        """Lambertian material (Mitsuba ``diffuse``); RGB or grey reflectance in [0, 1]."""
+        return MaterialId(self._core_object.add_diffuse_material(color(reflectance, "reflectance")))
+
+    def add_mirror_material(self, specular_reflectance: ColorLike = 1.0) -> MaterialId:
         """Perfect mirror with a tint (Mitsuba ``conductor``)."""
-        return self._core_object.add_mirror_material(
-            color(specular_reflectance, "specular_reflectance"))
+        return MaterialId(self._core_object.add_mirror_material(
+            color(specular_reflectance, "specular_reflectance")))
 
     def add_dielectric_material(self, int_ior: float = DEFAULT_INT_IOR,
-                                ext_ior: float = DEFAULT_EXT_IOR) -> int:
+                                ext_ior: float = DEFAULT_EXT_IOR) -> MaterialId:
         """Smooth glass with exact Fresnel (Mitsuba ``dielectric``); normals point outwards."""
-        return self._core_object.add_dielectric_material(float(int_ior), float(ext_ior))
+        return MaterialId(self._core_object.add_dielectric_material(float(int_ior), float(ext_ior)))
 
     def add_coated_material(self, diffuse_reflectance: ColorLike = 0.5,
                             int_ior: float = DEFAULT_INT_IOR,
-                            ext_ior: float = DEFAULT_EXT_IOR) -> int:
+                            ext_ior: float = DEFAULT_EXT_IOR) -> MaterialId:
         """Diffuse base under a smooth dielectric coat (Mitsuba ``plastic``)."""
-        return self._core_object.add_coated_material(
-            color(diffuse_reflectance, "diffuse_reflectance"), float(int_ior), float(ext_ior))
+        return MaterialId(self._core_object.add_coated_material(
+            color(diffuse_reflectance, "diffuse_reflectance"), float(int_ior), float(ext_ior)))
 
     def set_texture(self, material_id: int, path: PathLike, scale: Optional[ArrayLike] = None,
                     offset: Optional[ArrayLike] = None) -> None:

@@ -7,9 +7,13 @@
 #include <nanobind/stl/optional.h>
 #include <nanobind/stl/pair.h>
 #include <nanobind/stl/string.h>
+#include <nanobind/stl/tuple.h>
+#include <nanobind/stl/vector.h>
 
 #include <array>
 #include <optional>
+#include <tuple>
+#include <vector>
 
 namespace nb = nanobind;
 
@@ -25,6 +29,28 @@ template <typename F> uint32_t new_id(F &&call) {
     uint32_t id = PPM_INVALID_ID;
     check(call(&id));
     return id;
+}
+
+// One named parameter of ppm_scene_add_material / _texture / _light, as the Python layer
+// passes it: (name, kind, numbers, string, id) with kind a ppm_param_type value.
+using Param = std::tuple<std::string, int, std::vector<double>, std::string, uint32_t>;
+
+using AddWithParams = ppm_status (*)(ppm_scene, const char *, const ppm_param *, size_t, uint32_t *);
+
+uint32_t add_with_params(Scene &s, AddWithParams add, const std::string &type, const std::vector<Param> &given) {
+    std::vector<ppm_param> params;
+    params.reserve(given.size());
+    for (const Param &p : given) {
+        ppm_param c{};
+        c.name = std::get<0>(p).c_str();
+        c.type = static_cast<ppm_param_type>(std::get<1>(p));
+        c.numbers = std::get<2>(p).data();
+        c.count = std::get<2>(p).size();
+        c.string = std::get<3>(p).c_str();
+        c.id = std::get<4>(p);
+        params.push_back(c);
+    }
+    return new_id([&](uint32_t *id) { return add(s.get(), type.c_str(), params.data(), params.size(), id); });
 }
 
 } // namespace
@@ -152,6 +178,15 @@ void bind_scene(nb::module_ &m) {
                                    " primitives, need 4 numbers for each")
                                       .c_str());
         check(ppm_scene_set_patch_uv_rects(s.get(), geom_id, rects.data()));
+    });
+    cls.def("add_material", [](Scene &s, const std::string &type, const std::vector<Param> &params) {
+        return add_with_params(s, ppm_scene_add_material, type, params);
+    });
+    cls.def("add_texture", [](Scene &s, const std::string &type, const std::vector<Param> &params) {
+        return add_with_params(s, ppm_scene_add_texture, type, params);
+    });
+    cls.def("add_light", [](Scene &s, const std::string &type, const std::vector<Param> &params) {
+        return add_with_params(s, ppm_scene_add_light, type, params);
     });
     cls.def("add_point_light", [](Scene &s, const Vec3 &position, const Vec3 &intensity) {
         return new_id(

@@ -102,3 +102,65 @@ def test_area_light_seen_directly():
         with libppm.Renderer(scene, camera, photons_per_pass=1000) as r:
             image = r.render(1)
     np.testing.assert_allclose(image.reshape(-1, 3).mean(axis=0), [1, 2, 3], rtol=1e-5)
+
+
+def plane_under_light(build):
+    """Centre pixel of a plane of the material `build(scene)` returns, under a point light 1 m above."""
+    with libppm.Scene() as scene:
+        material = build(scene)
+        scene.add_quad((-2, -2, 0), (4, 0, 0), (0, 4, 0), material=material)
+        scene.add_light("point", position=(0, 0, 1), intensity=2.0)
+        scene.commit()
+        camera = libppm.Camera(origin=(0, 0, 3), target=(0, 0, 0), fov=10, width=5, height=5)
+        with libppm.Renderer(scene, camera, photons_per_pass=1000) as r:
+            return r.render(2)[2, 2]
+
+
+def test_named_parameters_as_in_load_dict(tmp_path):
+    """add_material / add_texture / add_light take Mitsuba's names; a texture id feeds a colour."""
+    grey = plane_under_light(lambda s: s.add_material("diffuse", reflectance=(0.2, 0.4, 0.6)))
+    np.testing.assert_allclose(grey, np.array([0.2, 0.4, 0.6]) / math.pi * 2.0, rtol=0.01)
+
+    texel = np.array([255, 128, 0])
+    png = tmp_path / "texel.png"
+    write_png(png, texel[None, None, :])
+
+    def textured(scene):
+        texture = scene.add_texture("bitmap", filename=png, to_uv=np.diag([2.0, 2.0, 1.0, 1.0]))
+        assert isinstance(texture, libppm.TextureId)
+        inner = scene.add_material("diffuse", reflectance=texture)
+        return scene.add_material("twosided", bsdf=inner)
+
+    np.testing.assert_allclose(plane_under_light(textured), srgb_to_linear(texel) / math.pi * 2.0, rtol=0.01)
+
+
+def test_named_parameters_refuse_misuse():
+    with libppm.Scene() as scene:
+        with pytest.raises(libppm.InvalidArgumentError, match="did you mean 'reflectance'"):
+            scene.add_material("diffuse", reflectanse=0.5)
+        with pytest.raises(libppm.InvalidArgumentError, match="unknown material type 'difuse'"):
+            scene.add_material("difuse")
+        with pytest.raises(libppm.InvalidArgumentError, match="'reflectance' must be at most 1"):
+            scene.add_material("diffuse", reflectance=(0.5, 2, 0.5))
+        with pytest.raises(libppm.InvalidArgumentError, match="'bsdf' must be a material id"):
+            scene.add_material("twosided", bsdf=0)  # a plain int is a number, not an id
+        with pytest.raises(ValueError, match="to_world"):
+            scene.add_light("spot", to_world=np.zeros((3, 3, 3)))
+
+
+def test_scene_files_reach_every_registered_type():
+    """A JSON type outside the builder's own list goes to the API's table, errors located."""
+    scene = {
+        "bsdfs": {"grey": {"type": "diffuse", "reflectance": 0.5},
+                  "shell": {"type": "twosided", "bsdf": "grey"}},
+        "emitters": [{"type": "point", "position": [0, 0, 3], "intensity": 1}],
+        "shapes": [{"type": "sphere", "bsdf": "shell"}],
+    }
+    assert libppm.load_dict(scene) is not None
+    scene["bsdfs"]["shell"]["bsdff"] = "grey"
+    with pytest.raises(libppm.ParseError, match=r"bsdfs\.shell\.bsdff: twosided material has no parameter"):
+        libppm.load_dict(scene)
+    del scene["bsdfs"]["shell"]["bsdff"]
+    scene["bsdfs"]["shell"]["bsdf"] = "nothing"
+    with pytest.raises(libppm.ParseError, match="no bsdf named 'nothing'"):
+        libppm.load_dict(scene)

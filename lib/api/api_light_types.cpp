@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: Apache-2.0
+// ppm_scene_add_light: one function per light type that is not a shape, each reading its
+// parameters with Mitsuba 3's names and defaults (src/emitters/*.cpp). A new type is a
+// function and a row of kLightTypes.
+#include <ppm/ppm.h>
+
+#include "api/api_params.h"
+#include "api/api_support.h"
+
+#include <string>
+
+namespace {
+
+using ppm::Rgb;
+using ppm::Vec3;
+using ppm::api::Params;
+
+// An intensity, radiance or irradiance: a colour no larger than the emission limit.
+Rgb emission(Params &p, const char *name, const Rgb &fallback) {
+    const Rgb c = p.color(name, fallback);
+    if (c.max() > ppm::kEmissionLimit)
+        p.fail(name, "exceeds the limit " + ppm::format_number(ppm::kEmissionLimit) + " of light values");
+    return c;
+}
+
+Vec3 scene_point(Params &p, const char *name, const Vec3 &v) {
+    if (!ppm::within_coordinate_limit(v))
+        p.fail(name, "has a coordinate beyond +-" + ppm::format_number(ppm::kCoordinateLimit) +
+                         " (the limit of scene coordinates)");
+    return v;
+}
+
+// Placed by `position` or, as Mitsuba also allows, by where `to_world` takes the origin.
+uint32_t add_point(ppm_scene_t &scene, Params &p) {
+    if (p.has("position") && p.has("to_world")) p.fail("position", "and 'to_world' cannot both be given");
+    const Vec3 position =
+        p.has("to_world") ? p.transform("to_world", {}).point({0, 0, 0}) : p.vec3("position", {0, 0, 0});
+    const Rgb intensity = emission(p, "intensity", Rgb(1));
+    p.finish();
+    return scene.shading.add_light(ppm::Light::point(scene_point(p, "position", position), intensity));
+}
+
+// Mitsuba's spot shines along +z of `to_world`.
+uint32_t add_spot(ppm_scene_t &scene, Params &p) {
+    const ppm::Affine to_world = p.transform("to_world", {});
+    const Rgb intensity = emission(p, "intensity", Rgb(1));
+    const double cutoff = p.number_in("cutoff_angle", 0, 90, 20);
+    const double beam = p.number_in("beam_width", 0, cutoff, cutoff * 0.75);
+    p.finish();
+    const Vec3 position = scene_point(p, "to_world", to_world.point({0, 0, 0}));
+    const Vec3 target = scene_point(p, "to_world", to_world.point({0, 0, 1}));
+    return scene.shading.add_light(ppm::Light::spot(position, target, intensity, cutoff, beam));
+}
+
+struct LightType {
+    const char *name;
+    uint32_t (*add)(ppm_scene_t &, Params &);
+};
+
+const LightType kLightTypes[] = {
+    {"point", add_point},
+    {"spot", add_spot},
+};
+
+} // namespace
+
+extern "C" ppm_status ppm_scene_add_light(ppm_scene scene, const char *type, const ppm_param *params,
+                                          size_t param_count, uint32_t *out_light_id) {
+    return ppm::api::scene_call(scene, [&](ppm_scene_t &s) {
+        const LightType &t = ppm::api::find_type(kLightTypes, "light", type);
+        Params p(std::string(t.name) + " light", params, param_count);
+        ppm::api::write_id(out_light_id, t.add(s, p));
+    });
+}
