@@ -52,7 +52,9 @@ const std::set<std::string> &object_tags() {
 // The types the builder renders (scene_builder.cpp); lenient mode substitutes the others.
 const std::set<std::string> &renderable(const std::string &tag) {
     static const std::map<std::string, std::set<std::string>> types = {
-        {"bsdf", {"diffuse", "conductor", "dielectric", "plastic", "twosided"}},
+        {"bsdf",
+         {"diffuse", "conductor", "dielectric", "plastic", "twosided", "thindielectric", "roughdielectric",
+          "roughplastic"}},
         {"emitter", {"point", "spot", "area"}},
         {"shape", {"sphere", "rectangle", "cube", "obj", "ply", "serialized", "bezier"}},
         {"texture", {"bitmap"}}};
