@@ -123,6 +123,54 @@ uint32_t add_plastic(ppm_scene_t &scene, Params &p) {
     return add(scene, Bsdf::coated(c.value, int_ior, ext_ior), c);
 }
 
+uint32_t add_thindielectric(ppm_scene_t &scene, Params &p) {
+    const double int_ior = p.positive("int_ior", kGlassIor), ext_ior = p.positive("ext_ior", kAirIor);
+    p.finish();
+    return add(scene, Bsdf::thin_dielectric(int_ior, ext_ior));
+}
+
+// Mitsuba's MicrofacetDistribution(props): `distribution`, then `alpha` for both directions or
+// `alpha_u` and `alpha_v` (not both forms), and `sample_visible`.
+struct Roughness {
+    ppm::MicrofacetType type = ppm::MicrofacetType::Beckmann;
+    double alpha_u = 0.1, alpha_v = 0.1;
+    bool sample_visible = true;
+};
+
+Roughness read_roughness(Params &p, bool anisotropic) {
+    Roughness r;
+    const std::string name = p.choice("distribution", {"beckmann", "ggx"}, "beckmann");
+    ppm::parse_microfacet_type(name.c_str(), &r.type);
+    if (anisotropic && (p.has("alpha_u") || p.has("alpha_v"))) {
+        if (p.has("alpha")) p.fail("alpha", "give either alpha or alpha_u and alpha_v, not both");
+        if (!p.has("alpha_u") || !p.has("alpha_v"))
+            p.fail(p.has("alpha_u") ? "alpha_v" : "alpha_u", "is needed with the other of alpha_u and alpha_v");
+        r.alpha_u = p.positive("alpha_u", 0.1);
+        r.alpha_v = p.positive("alpha_v", 0.1);
+    } else {
+        r.alpha_u = r.alpha_v = p.positive("alpha", 0.1);
+    }
+    r.sample_visible = p.boolean("sample_visible", true);
+    return r;
+}
+
+uint32_t add_roughdielectric(ppm_scene_t &scene, Params &p) {
+    const Roughness r = read_roughness(p, true);
+    const double int_ior = p.positive("int_ior", kGlassIor), ext_ior = p.positive("ext_ior", kAirIor);
+    p.finish();
+    return add(scene, Bsdf::rough_dielectric(r.type, r.alpha_u, r.alpha_v, int_ior, ext_ior, r.sample_visible));
+}
+
+// Mitsuba's roughplastic is isotropic (it refuses alpha_u != alpha_v): only `alpha`.
+uint32_t add_roughplastic(ppm_scene_t &scene, Params &p) {
+    const ColorOrTexture c = reflectance_or_texture(scene, p, "diffuse_reflectance", Rgb(0.5));
+    const Roughness r = read_roughness(p, false);
+    const double int_ior = p.positive("int_ior", kPolypropyleneIor), ext_ior = p.positive("ext_ior", kAirIor);
+    if (p.boolean("nonlinear", false)) p.fail("nonlinear", "true is not supported (only false)");
+    p.finish();
+    return add(scene, Bsdf::rough_plastic(c.value, r.type, r.alpha_u, int_ior, ext_ior, r.sample_visible), c);
+}
+
 // Mitsuba's `twosided` makes a one-sided BSDF two-sided. libppm's opaque materials already
 // are, so the nested material is copied under a new id.
 uint32_t add_twosided(ppm_scene_t &scene, Params &p) {
@@ -138,8 +186,15 @@ struct MaterialType {
 };
 
 const MaterialType kMaterialTypes[] = {
-    {"diffuse", add_diffuse},       {"conductor", add_conductor}, {"roughconductor", add_roughconductor},
-    {"dielectric", add_dielectric}, {"plastic", add_plastic},     {"twosided", add_twosided},
+    {"diffuse", add_diffuse},
+    {"conductor", add_conductor},
+    {"roughconductor", add_roughconductor},
+    {"dielectric", add_dielectric},
+    {"plastic", add_plastic},
+    {"twosided", add_twosided},
+    {"thindielectric", add_thindielectric},
+    {"roughdielectric", add_roughdielectric},
+    {"roughplastic", add_roughplastic},
 };
 
 } // namespace

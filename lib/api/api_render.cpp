@@ -117,7 +117,9 @@ ppm_status ppm_scene_set_material_texture(ppm_scene scene, uint32_t material_id,
     return scene_call(scene, [&](ppm_scene_t &s) {
         require(path, "path");
         ppm::Material &material = s.shading.material(material_id);
-        if (material.bsdf.type() == ppm::Bsdf::Type::Dielectric)
+        const ppm::Bsdf::Type type = material.bsdf.type();
+        if (type == ppm::Bsdf::Type::Dielectric || type == ppm::Bsdf::Type::ThinDielectric ||
+            type == ppm::Bsdf::Type::RoughDielectric)
             invalid_argument("material " + std::to_string(material_id) + " is glass, which has no colour to texture");
         ppm::TextureMapping mapping;
         if (scale) {

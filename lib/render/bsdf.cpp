@@ -116,9 +116,12 @@ double Bsdf::specular_probability(const Vec3 &wo) const {
     case Type::Diffuse: return 0.0;
     case Type::Mirror:
     case Type::Conductor:
-    case Type::Dielectric: return 1.0;
+    case Type::Dielectric:
+    case Type::ThinDielectric: return 1.0;
     case Type::Coated: return coat_specular_probability(fresnel_dielectric(std::fabs(wo.z), eta_));
-    case Type::RoughConductor: return 0.0;
+    case Type::RoughConductor:
+    case Type::RoughDielectric:
+    case Type::RoughPlastic: return 0.0;
     }
     return 0.0;
 }
@@ -128,9 +131,14 @@ bool Bsdf::gathers(double gather_alpha) const {
     case Type::Diffuse:
     case Type::Coated: return true;
     case Type::RoughConductor: return std::min(distribution_.alpha_u(), distribution_.alpha_v()) >= gather_alpha;
+    // Rough plastic is gathered whole, coat included, whatever its roughness: a continued coat
+    // would need a visible point that evaluates the base alone (Bsdf has no such query yet).
+    case Type::RoughPlastic: return true;
     case Type::Mirror:
     case Type::Conductor:
-    case Type::Dielectric: return false;
+    case Type::Dielectric:
+    case Type::ThinDielectric:
+    case Type::RoughDielectric: return false;
     }
     return false;
 }
@@ -161,6 +169,8 @@ BsdfSample Bsdf::sample(const Vec3 &wo, double u_lobe, double u1, double u2, Tra
         if (mode == TransportMode::Radiance) s.weight = Rgb(1.0 / (eta_t * eta_t));
         return s;
     }
+    if (type_ == Type::ThinDielectric) return sample_thin_dielectric(wo, u_lobe);
+    if (type_ == Type::RoughDielectric) return sample_rough_dielectric(wo, u_lobe, u1, u2, mode);
 
     // Opaque: work on the side of wo, flip back at the end.
     const bool back = wo.z < 0;
@@ -201,14 +211,18 @@ BsdfSample Bsdf::sample(const Vec3 &wo, double u_lobe, double u1, double u2, Tra
         }
         break;
     }
-    case Type::Dielectric: break;
+    case Type::RoughPlastic: s = sample_rough_plastic(w, u_lobe, u1, u2); break;
+    case Type::Dielectric:
+    case Type::ThinDielectric:
+    case Type::RoughDielectric: break;
     }
     if (!(s.pdf > 0)) return BsdfSample{};
     if (back) s.wi = flip_z(s.wi);
     return s;
 }
 
-Rgb Bsdf::eval(const Vec3 &wo, const Vec3 &wi) const {
+Rgb Bsdf::eval(const Vec3 &wo, const Vec3 &wi, TransportMode mode) const {
+    if (type_ == Type::RoughDielectric) return eval_rough_dielectric(wo, wi, mode);
     if (!(wo.z * wi.z > 0)) return Rgb();
     switch (type_) {
     case Type::Diffuse: return reflectance_ * kInvPi;
@@ -219,9 +233,12 @@ Rgb Bsdf::eval(const Vec3 &wo, const Vec3 &wi) const {
     }
     case Type::RoughConductor:
         return wo.z > 0 ? eval_rough_conductor(wo, wi) : eval_rough_conductor(flip_z(wo), flip_z(wi));
+    case Type::RoughPlastic: return wo.z > 0 ? eval_rough_plastic(wo, wi) : eval_rough_plastic(flip_z(wo), flip_z(wi));
     case Type::Mirror:
     case Type::Conductor:
-    case Type::Dielectric: break;
+    case Type::Dielectric:
+    case Type::ThinDielectric:
+    case Type::RoughDielectric: break;
     }
     return Rgb();
 }
@@ -238,17 +255,21 @@ FixedWoLobe Bsdf::fixed_wo(const Vec3 &wo, const Rgb &weight) const {
         lobe.coat_ = true;
         break;
     case Type::RoughConductor:
+    case Type::RoughPlastic:
         lobe.factor_ = weight;
         lobe.full_ = true;
         break;
     case Type::Mirror:
     case Type::Conductor:
-    case Type::Dielectric: break;
+    case Type::Dielectric:
+    case Type::ThinDielectric:
+    case Type::RoughDielectric: break;
     }
     return lobe;
 }
 
 double Bsdf::pdf(const Vec3 &wo, const Vec3 &wi) const {
+    if (type_ == Type::RoughDielectric) return pdf_rough_dielectric(wo, wi);
     if (!(wo.z * wi.z > 0)) return 0.0;
     const double cosine_pdf = std::fabs(wi.z) * kInvPi;
     switch (type_) {
@@ -256,9 +277,12 @@ double Bsdf::pdf(const Vec3 &wo, const Vec3 &wi) const {
     case Type::Coated: return (1.0 - coat_specular_probability(fresnel_dielectric(std::fabs(wo.z), eta_))) * cosine_pdf;
     case Type::RoughConductor:
         return wo.z > 0 ? pdf_rough_conductor(wo, wi) : pdf_rough_conductor(flip_z(wo), flip_z(wi));
+    case Type::RoughPlastic: return wo.z > 0 ? pdf_rough_plastic(wo, wi) : pdf_rough_plastic(flip_z(wo), flip_z(wi));
     case Type::Mirror:
     case Type::Conductor:
-    case Type::Dielectric: break;
+    case Type::Dielectric:
+    case Type::ThinDielectric:
+    case Type::RoughDielectric: break;
     }
     return 0.0;
 }

@@ -53,7 +53,9 @@ const std::set<std::string> &object_tags() {
 // The types the builder renders (scene_builder.cpp); lenient mode substitutes the others.
 const std::set<std::string> &renderable(const std::string &tag) {
     static const std::map<std::string, std::set<std::string>> types = {
-        {"bsdf", {"diffuse", "conductor", "roughconductor", "dielectric", "plastic", "twosided"}},
+        {"bsdf",
+         {"diffuse", "conductor", "roughconductor", "dielectric", "plastic", "twosided", "thindielectric",
+          "roughdielectric", "roughplastic"}},
         {"emitter", {"point", "spot", "area", "constant", "envmap", "directional"}},
         {"shape", {"sphere", "rectangle", "disk", "cylinder", "cube", "obj", "ply", "serialized", "bezier"}},
         {"texture", {"bitmap"}}};

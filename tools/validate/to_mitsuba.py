@@ -365,6 +365,23 @@ class Translator:
             check_keys(b, {"type", "int_ior", "ext_ior"}, where)
             return {"type": "dielectric", "int_ior": number(b.get("int_ior", 1.5046), f"{where}.int_ior"),
                     "ext_ior": number(b.get("ext_ior", 1.000277), f"{where}.ext_ior")}
+        elif kind in ("thindielectric", "roughdielectric"):
+            out = {"type": kind, "int_ior": number(b.get("int_ior", 1.5046), f"{where}.int_ior"),
+                   "ext_ior": number(b.get("ext_ior", 1.000277), f"{where}.ext_ior")}
+            if kind == "roughdielectric":
+                for key in ("distribution", "alpha", "alpha_u", "alpha_v", "sample_visible"):
+                    if key in b:
+                        out[key] = b[key]
+            return out
+        elif kind == "roughplastic":
+            inner = {"type": "roughplastic", "nonlinear": False,
+                     "diffuse_reflectance": self.texture_or_colour(b.get("diffuse_reflectance", 0.5),
+                                                                   f"{where}.diffuse_reflectance"),
+                     "int_ior": number(b.get("int_ior", 1.49), f"{where}.int_ior"),
+                     "ext_ior": number(b.get("ext_ior", 1.000277), f"{where}.ext_ior")}
+            for key in ("distribution", "alpha", "sample_visible"):
+                if key in b:
+                    inner[key] = b[key]
         elif kind == "plastic":
             check_keys(b, {"type", "diffuse_reflectance", "int_ior", "ext_ior", "nonlinear"}, where)
             if b.get("nonlinear", False):
