@@ -95,6 +95,13 @@ Bsdf Bsdf::coated(const Rgb &diffuse_reflectance, double int_ior, double ext_ior
     return b.with_reflectance(diffuse_reflectance);
 }
 
+Bsdf Bsdf::null() {
+    Bsdf b;
+    b.type_ = Type::Null;
+    b.reflectance_ = Rgb(1.0);
+    return b;
+}
+
 Bsdf Bsdf::with_reflectance(const Rgb &reflectance) const {
     Bsdf b = *this;
     b.reflectance_ = reflectance;
@@ -114,7 +121,8 @@ double Bsdf::specular_probability(const Vec3 &wo) const {
     switch (type_) {
     case Type::Diffuse: return 0.0;
     case Type::Mirror:
-    case Type::Dielectric: return 1.0;
+    case Type::Dielectric:
+    case Type::Null: return 1.0;
     case Type::Coated: return coat_specular_probability(fresnel_dielectric(std::fabs(wo.z), eta_));
     }
     return 0.0;
@@ -124,6 +132,13 @@ BsdfSample Bsdf::sample(const Vec3 &wo, double u_lobe, double u1, double u2, Tra
     BsdfSample s;
     if (wo.z == 0) return s;
 
+    if (type_ == Type::Null) {
+        s.wi = wo * -1.0;
+        s.pdf = 1.0;
+        s.is_specular = true;
+        s.weight = Rgb(1.0);
+        return s;
+    }
     if (type_ == Type::Dielectric) {
         const FresnelTerms fresnel = fresnel_dielectric_terms(wo.z, eta_);
         const double r = fresnel.reflectance();
@@ -174,7 +189,8 @@ BsdfSample Bsdf::sample(const Vec3 &wo, double u_lobe, double u1, double u2, Tra
         }
         break;
     }
-    case Type::Dielectric: break;
+    case Type::Dielectric:
+    case Type::Null: break;
     }
     if (!(s.pdf > 0)) return BsdfSample{};
     if (back) s.wi = flip_z(s.wi);
@@ -191,7 +207,8 @@ Rgb Bsdf::eval(const Vec3 &wo, const Vec3 &wi) const {
         return reflectance_ * (coat_diffuse_scale_ * (1.0 - fresnel_o) * (1.0 - fresnel_i) * kInvPi);
     }
     case Type::Mirror:
-    case Type::Dielectric: break;
+    case Type::Dielectric:
+    case Type::Null: break;
     }
     return Rgb();
 }
@@ -208,7 +225,8 @@ FixedWoLobe Bsdf::fixed_wo(const Vec3 &wo, const Rgb &weight) const {
         lobe.coat_ = true;
         break;
     case Type::Mirror:
-    case Type::Dielectric: break;
+    case Type::Dielectric:
+    case Type::Null: break;
     }
     return lobe;
 }
@@ -220,7 +238,8 @@ double Bsdf::pdf(const Vec3 &wo, const Vec3 &wi) const {
     case Type::Diffuse: return cosine_pdf;
     case Type::Coated: return (1.0 - coat_specular_probability(fresnel_dielectric(std::fabs(wo.z), eta_))) * cosine_pdf;
     case Type::Mirror:
-    case Type::Dielectric: break;
+    case Type::Dielectric:
+    case Type::Null: break;
     }
     return 0.0;
 }

@@ -87,7 +87,7 @@ private:
 
 class Bsdf {
 public:
-    enum class Type : uint8_t { Diffuse, Mirror, Dielectric, Coated };
+    enum class Type : uint8_t { Diffuse, Mirror, Dielectric, Coated, Null };
 
     // Black diffuse: scatters nothing (a placeholder that needs no validation).
     Bsdf() = default;
@@ -108,6 +108,9 @@ public:
     // albedo(wo) = F + (1 - F) R_d <= 1 and f is symmetric. Mitsuba approximates Fdr by a
     // fitted polynomial; we integrate it (f differs from Mitsuba 3.9.1 by 0.12 % at eta 1.5).
     static Bsdf coated(const Rgb &diffuse_reflectance, double int_ior, double ext_ior);
+    // No surface: a specular lobe that passes light straight through (wi = -wo, weight 1),
+    // the pass-through part of Mitsuba 3's `mask` (src/bsdfs/mask.cpp).
+    static Bsdf null();
 
     // The same material with another base/specular colour (e.g. from a texture), without
     // revalidating or recomputing the coat's Fdr. Components must lie in [0, 1].

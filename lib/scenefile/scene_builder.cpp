@@ -23,6 +23,18 @@ bool is_bitmap(const JsonNode &color) {
            color.at("type").string() == "bitmap";
 }
 
+// A texture the generic path reads (ppm_scene_add_texture): any texture object but a bitmap
+// with only the keys of libppm's older form (filename, scale, offset).
+bool is_generic_texture(const JsonNode &color) {
+    if (!color.is_object() || !color.has("type") || !color.at("type").is_string()) return false;
+    const std::string type = color.at("type").string();
+    if (type == "rgb" || type == "spectrum") return false;
+    if (type != "bitmap") return true;
+    for (const std::string &key : color.keys())
+        if (key != "type" && key != "filename" && key != "scale" && key != "offset") return true;
+    return false;
+}
+
 } // namespace
 
 void SceneBuilder::check(const JsonNode &node, ppm_status status) const {
@@ -51,7 +63,10 @@ std::uint32_t SceneBuilder::add_bsdf(const JsonNode &bsdf) {
     bsdf.require_object();
     const std::string type = bsdf.at("type").string();
     std::uint32_t id = 0;
-    if (type != "diffuse" && type != "conductor" && type != "dielectric" && type != "plastic") {
+    const char *const color_keys[] = {"reflectance", "specular_reflectance", "diffuse_reflectance"};
+    bool generic = type != "diffuse" && type != "conductor" && type != "dielectric" && type != "plastic";
+    for (const char *key : color_keys) generic = generic || (bsdf.has(key) && is_generic_texture(bsdf.at(key)));
+    if (generic) {
         // Every other type as the API's material table reads it (it names unknown types).
         const SceneParams params = params_of(bsdf);
         params.check(ppm_scene_add_material(scene_, type.c_str(), params.data(), params.size(), &id));
