@@ -161,7 +161,10 @@ void checkerboard_cells(void **) {
         TextureRef::checkerboard(Rgb(1, 0, 0), Rgb(0, 0, 1), TextureMapping::scale_offset(4, 4, 0, 0));
     assert_close(scaled.eval(0.2, 0.05).b, 1, 0); // u = 0.8, v = 0.2
     assert_close(scaled.eval(0.3, 0.05).r, 1, 0); // u = 1.2
-    assert_close(TextureRef::checkerboard(Rgb(1), Rgb(0)).eval_1(0.1, 0.1), 1, 1e-6);
+    // As a scalar (eval_1: weights, opacities) Mitsuba swaps the cells: color1 at (0.1, 0.1).
+    assert_close(TextureRef::checkerboard(Rgb(1), Rgb(0)).eval_1(0.1, 0.1), 0, 0);
+    assert_close(TextureRef::checkerboard(Rgb(1), Rgb(0)).eval_1(0.7, 0.1), 1, 1e-6);
+    assert_close(TextureRef::checkerboard(Rgb(0, 1, 0), Rgb(0)).eval_1(0.7, 0.1), 0.715160, 1e-12);
     // A checkerboard textures a material like an image.
     const Material m{Bsdf::diffuse(Rgb(0.5)), scaled};
     assert_close(m.at(0.2, 0.05).reflectance().b, 1, 0);

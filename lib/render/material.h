@@ -81,9 +81,19 @@ struct TextureRef {
         default: return Rgb();
         }
     }
-    // A scalar (weights, opacities): Mitsuba's eval_1 of an RGB texture is its luminance.
+    // A scalar (weights, opacities): Mitsuba's eval_1, the luminance of the colour. For a
+    // checkerboard Mitsuba 3 keeps its legacy scalar rule, with the cells swapped: color0
+    // where exactly one of frac(u), frac(v) is > 0.5 (src/textures/checkerboard.cpp, eval_1).
     double eval_1(double s, double t) const {
-        const Rgb c = eval(s, t);
+        Rgb c;
+        if (kind == Kind::Checkerboard) {
+            double u, v;
+            mapping.apply(s, t, &u, &v);
+            const bool high_u = u - std::floor(u) > 0.5, high_v = v - std::floor(v) > 0.5;
+            c = high_u != high_v ? color0 : color1;
+        } else {
+            c = eval(s, t);
+        }
         return 0.212671 * c.r + 0.715160 * c.g + 0.072169 * c.b;
     }
 };
