@@ -95,6 +95,7 @@ def main():
     parser.add_argument("--passes", type=int, default=64, help="libppm passes")
     parser.add_argument("--photons", type=int, default=20000, help="libppm photons per pass")
     parser.add_argument("--only", help="one scene name")
+    parser.add_argument("--keep", help="folder to write the scenes and images to")
     args = parser.parse_args()
     import mitsuba as mi
     for variant in ("scalar_rgb", "llvm_ad_rgb"):
@@ -103,7 +104,8 @@ def main():
             break
         except Exception:  # pragma: no cover
             continue
-    folder = tempfile.mkdtemp(prefix="ppm-compare-textures-")
+    folder = args.keep or tempfile.mkdtemp(prefix="ppm-compare-textures-")
+    os.makedirs(folder, exist_ok=True)
     png = os.path.join(folder, "texels.png")
     write_png(png)
     worst = 0.0
@@ -115,9 +117,16 @@ def main():
             f.write(HEAD.format(spp=args.spp, size=SIZE) + body.replace("{png}", png) + "</scene>\n")
         ours = render_libppm(os.path.abspath(args.lib), path, args.passes, args.photons)
         theirs = render_mitsuba(path)
+        if args.keep:
+            np.save(os.path.join(folder, name + "_libppm.npy"), ours)
+            np.save(os.path.join(folder, name + "_mitsuba.npy"), theirs)
         ratio = ours.mean(axis=(0, 1)) / theirs.mean(axis=(0, 1))
         worst = max(worst, float(np.max(np.abs(ratio - 1))))
-        print(f"{name:22s} mean ratio libppm / Mitsuba  r {ratio[0]:.4f}  g {ratio[1]:.4f}  b {ratio[2]:.4f}")
+        # Pixel by pixel, on 4 x 4 blocks (less noise): RMS difference relative to the mean.
+        blocks = [im.reshape(SIZE // 4, 4, SIZE // 4, 4, 3).mean(axis=(1, 3)) for im in (ours, theirs)]
+        rms = np.sqrt(np.mean((blocks[0] - blocks[1]) ** 2)) / theirs.mean()
+        print(f"{name:22s} mean ratio libppm / Mitsuba  r {ratio[0]:.4f}  g {ratio[1]:.4f}  b {ratio[2]:.4f}"
+              f"   4x4-block rms {100 * rms:.2f} %")
     print(f"largest deviation {100 * worst:.2f} %")
 
 
