@@ -285,6 +285,31 @@ void malformed_or_inconsistent_files_are_located_errors(void **) {
                     "the root element must be <scene>");
 }
 
+// blendbsdf's nested BSDFs: references in any role become the named material, nested elements
+// keep their name as role, unnamed ones are bsdf_0 then bsdf_1 (Mitsuba's order).
+void blendbsdf_and_mask_nest_their_bsdfs(void **) {
+    const XmlScene scene = read_mitsuba_xml(
+        write("blend.xml",
+              "<scene version=\"3.0.0\"><bsdf type=\"diffuse\" id=\"red\"/>\n"
+              "<shape type=\"sphere\"><bsdf type=\"blendbsdf\"><ref name=\"bsdf_1\" id=\"red\"/>"
+              "<bsdf type=\"conductor\" name=\"bsdf_0\"/></bsdf></shape>\n"
+              "<shape type=\"sphere\"><bsdf type=\"blendbsdf\"><texture type=\"checkerboard\" name=\"weight\"/>"
+              "<bsdf type=\"diffuse\"/><ref id=\"red\"/></bsdf></shape>\n"
+              "<shape type=\"sphere\"><bsdf type=\"mask\"><float name=\"opacity\" value=\"0.3\"/>"
+              "<bsdf type=\"twosided\"><ref id=\"red\"/></bsdf></bsdf></shape></scene>"),
+        {});
+    const Json::Value &shapes = scene.root["shapes"];
+    assert_int_equal(shapes.size(), 3);
+    assert_string_equal(shapes[0]["bsdf"]["type"].asCString(), "blendbsdf");
+    assert_string_equal(shapes[0]["bsdf"]["bsdf_1"].asCString(), "red");
+    assert_string_equal(shapes[0]["bsdf"]["bsdf_0"]["type"].asCString(), "conductor");
+    assert_string_equal(shapes[1]["bsdf"]["weight"]["type"].asCString(), "checkerboard");
+    assert_string_equal(shapes[1]["bsdf"]["bsdf_0"]["type"].asCString(), "diffuse");
+    assert_string_equal(shapes[1]["bsdf"]["bsdf_1"].asCString(), "red");
+    assert_string_equal(shapes[2]["bsdf"]["type"].asCString(), "mask");
+    assert_string_equal(shapes[2]["bsdf"]["bsdf"].asCString(), "red"); // twosided unwrapped
+}
+
 int setup(void **) { return test_make_folder(folder, sizeof folder, "ppm-xml-"); }
 int teardown(void **) {
     test_remove_folder(folder);
@@ -300,6 +325,7 @@ int main() {
         cmocka_unit_test(spectra_become_the_rgb_mitsuba_gives_them),
         cmocka_unit_test(lenient_mode_substitutes_with_a_warning_and_strict_mode_keeps_the_type),
         cmocka_unit_test(malformed_or_inconsistent_files_are_located_errors),
+        cmocka_unit_test(blendbsdf_and_mask_nest_their_bsdfs),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -14,6 +14,8 @@
 
 typedef scene_fixture fixture;
 
+static const double kPiParams = 3.14159265358979323846;
+
 static ppm_param numbers(const char *name, const double *values, size_t count) {
     ppm_param p;
     memset(&p, 0, sizeof p);
@@ -220,10 +222,160 @@ static void test_bitmap_textures(void **state) {
     assert_ppm_error(ppm_scene_add_texture(f->scene, "bitmap", &missing, 1, NULL), PPM_ERROR_IO, "texture.png");
     assert_ppm_error(ppm_scene_add_texture(f->scene, "bitmap", NULL, 0, NULL), PPM_ERROR_INVALID_ARGUMENT,
                      "'filename' is required");
+    /* Rotations are accepted (a missing file is then the error); a singular to_uv is not. */
     const double rotate[16] = {0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     const ppm_param rotated[] = {string_param("filename", "/nonexistent/texture.png"), numbers("to_uv", rotate, 16)};
-    assert_ppm_error(ppm_scene_add_texture(f->scene, "bitmap", rotated, 2, NULL), PPM_ERROR_INVALID_ARGUMENT,
-                     "'to_uv' may only scale and translate");
+    assert_ppm_error(ppm_scene_add_texture(f->scene, "bitmap", rotated, 2, NULL), PPM_ERROR_IO, "texture.png");
+    const double flat[16] = {1, 2, 0, 0, 2, 4, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    const ppm_param singular[] = {string_param("filename", "/nonexistent/texture.png"), numbers("to_uv", flat, 16)};
+    assert_ppm_error(ppm_scene_add_texture(f->scene, "bitmap", singular, 2, NULL), PPM_ERROR_INVALID_ARGUMENT,
+                     "bitmap texture: parameter 'to_uv' is singular");
+    const ppm_param bad_filter[] = {string_param("filename", "x.png"), string_param("filter_type", "nearst")};
+    assert_ppm_error(ppm_scene_add_texture(f->scene, "bitmap", bad_filter, 2, NULL), PPM_ERROR_INVALID_ARGUMENT,
+                     "'filter_type' must be one of");
+    const ppm_param bad_wrap[] = {string_param("filename", "x.png"), string_param("wrap_mode", "wrap")};
+    assert_ppm_error(ppm_scene_add_texture(f->scene, "bitmap", bad_wrap, 2, NULL), PPM_ERROR_INVALID_ARGUMENT,
+                     "'wrap_mode' must be one of");
+    const double two = 2;
+    const ppm_param bad_raw[] = {string_param("filename", "x.png"), numbers("raw", &two, 1)};
+    assert_ppm_error(ppm_scene_add_texture(f->scene, "bitmap", bad_raw, 2, NULL), PPM_ERROR_INVALID_ARGUMENT,
+                     "'raw' is a boolean");
+}
+
+/* A checkerboard is a texture like a bitmap: any colour parameter takes it. */
+static void test_checkerboard_textures(void **state) {
+    fixture *f = *state;
+    uint32_t texture = PPM_INVALID_ID, material = PPM_INVALID_ID;
+    assert_ppm_ok(ppm_scene_add_texture(f->scene, "checkerboard", NULL, 0, &texture));
+    const double red[3] = {0.8, 0.1, 0.1}, scale4[16] = {4, 0, 0, 0, 0, 4, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    const ppm_param params[] = {numbers("color0", red, 3), numbers("to_uv", scale4, 16)};
+    assert_ppm_ok(ppm_scene_add_texture(f->scene, "checkerboard", params, 2, &texture));
+    const ppm_param uses[] = {id_param("reflectance", PPM_PARAM_TEXTURE, texture)};
+    assert_ppm_ok(ppm_scene_add_material(f->scene, "diffuse", uses, 1, &material));
+    const ppm_param base[] = {id_param("diffuse_reflectance", PPM_PARAM_TEXTURE, texture)};
+    assert_ppm_ok(ppm_scene_add_material(f->scene, "plastic", base, 1, &material));
+    const double negative = -0.5;
+    const ppm_param bad = numbers("color1", &negative, 1);
+    assert_ppm_error(ppm_scene_add_texture(f->scene, "checkerboard", &bad, 1, NULL), PPM_ERROR_INVALID_ARGUMENT,
+                     "checkerboard texture: parameter 'color1' must be >= 0");
+    const ppm_param misspelt = numbers("colour0", red, 3);
+    assert_ppm_error(ppm_scene_add_texture(f->scene, "checkerboard", &misspelt, 1, NULL), PPM_ERROR_INVALID_ARGUMENT,
+                     "color0");
+}
+
+/* Plane z = 0 (4 x 4) of material `plane` under a point light of intensity 2 at (0, 0, 1),
+ * seen from (0, 0, 3) with a 60 degree fov at 24 x 24; a quad of material `cover` at z = 1.5
+ * between the light and the camera when cover != PPM_INVALID_ID. Writes the image's mean
+ * radiance per channel. */
+static const double kPlaneLight = 2.0, kCover = 1.5;
+static void render_lit_plane(ppm_scene scene, uint32_t plane, uint32_t cover, double mean[3]) {
+    const double origin[3] = {-2, -2, 0}, eu[3] = {4, 0, 0}, ev[3] = {0, 4, 0};
+    uint32_t id = 0;
+    assert_ppm_ok(ppm_scene_add_quad(scene, origin, eu, ev, &id));
+    assert_ppm_ok(ppm_scene_set_geometry_material(scene, id, plane));
+    if (cover != PPM_INVALID_ID) {
+        const double top[3] = {-2, -2, kCover};
+        assert_ppm_ok(ppm_scene_add_quad(scene, top, eu, ev, &id));
+        assert_ppm_ok(ppm_scene_set_geometry_material(scene, id, cover));
+    }
+    const double light[3] = {0, 0, 1}, intensity[3] = {kPlaneLight, kPlaneLight, kPlaneLight};
+    assert_ppm_ok(ppm_scene_add_point_light(scene, light, intensity, NULL));
+    assert_ppm_ok(ppm_scene_commit(scene));
+    ppm_camera_v2 camera;
+    ppm_camera_v2_init(&camera);
+    camera.origin[2] = 3;
+    camera.target[2] = 0;
+    camera.fov = 60;
+    camera.width = camera.height = 24;
+    ppm_renderer renderer = NULL;
+    assert_ppm_ok(ppm_renderer_create_v2(scene, &camera, &renderer));
+    assert_ppm_ok(ppm_renderer_set_int(renderer, "photons_per_pass", 2000));
+    for (int pass = 0; pass < 32; ++pass) assert_ppm_ok(ppm_render_pass(renderer));
+    float rgb[3 * 24 * 24];
+    assert_ppm_ok(ppm_renderer_get_layer(renderer, "radiance", rgb, 3 * 24 * 24));
+    ppm_renderer_release(renderer);
+    for (int c = 0; c < 3; ++c) {
+        mean[c] = 0;
+        for (int i = 0; i < 24 * 24; ++i) mean[c] += rgb[3 * i + c] / (24.0 * 24.0);
+    }
+}
+
+/* The mean over that image of L = rho I cos / (pi d^2) for rho = 1 (8 x 8 samples a pixel). */
+static double lit_plane_mean(void) {
+    const double t = tan(60 * kPiParams / 360.0);
+    double sum = 0;
+    for (int y = 0; y < 24 * 8; ++y)
+        for (int x = 0; x < 24 * 8; ++x) {
+            const double px = (1 - 2 * (x + 0.5) / (24 * 8)) * t * 3, py = (1 - 2 * (y + 0.5) / (24 * 8)) * t * 3;
+            const double d2 = px * px + py * py + 1;
+            sum += kPlaneLight / kPiParams * (1 / sqrt(d2)) / d2;
+        }
+    return sum / (24 * 8 * 24 * 8);
+}
+
+/* blendbsdf of two diffuse colours renders (1 - w) rho0 + w rho1. */
+static void test_blendbsdf_renders_the_weighted_mean(void **state) {
+    fixture *f = *state;
+    const double rho0[3] = {0.8, 0.2, 0.1}, rho1[3] = {0.1, 0.4, 0.9}, w = 0.3;
+    uint32_t d0 = 0, d1 = 0, blend = 0;
+    assert_ppm_ok(ppm_scene_add_diffuse_material(f->scene, rho0, &d0));
+    assert_ppm_ok(ppm_scene_add_diffuse_material(f->scene, rho1, &d1));
+    const ppm_param params[] = {numbers("weight", &w, 1), id_param("bsdf_0", PPM_PARAM_MATERIAL, d0),
+                                id_param("bsdf_1", PPM_PARAM_MATERIAL, d1)};
+    assert_ppm_ok(ppm_scene_add_material(f->scene, "blendbsdf", params, 3, &blend));
+    double mean[3];
+    render_lit_plane(f->scene, blend, PPM_INVALID_ID, mean);
+    const double unit = lit_plane_mean();
+    for (int c = 0; c < 3; ++c) {
+        const double expected = ((1 - w) * rho0[c] + w * rho1[c]) * unit;
+        print_message("blendbsdf channel %d: mean %.5f, expected %.5f\n", c, mean[c], expected);
+        assert_close(mean[c], expected, 0.02 * expected);
+    }
+}
+
+/* A black mask of opacity o between the camera and the lit plane lets (1 - o) through. */
+static void test_mask_passes_light_through(void **state) {
+    fixture *f = *state;
+    const double rho[3] = {0.8, 0.5, 0.3}, black[3] = {0, 0, 0}, o = 0.4;
+    uint32_t plane = 0, ink = 0, mask = 0;
+    assert_ppm_ok(ppm_scene_add_diffuse_material(f->scene, rho, &plane));
+    assert_ppm_ok(ppm_scene_add_diffuse_material(f->scene, black, &ink));
+    const ppm_param params[] = {numbers("opacity", &o, 1), id_param("bsdf", PPM_PARAM_MATERIAL, ink)};
+    assert_ppm_ok(ppm_scene_add_material(f->scene, "mask", params, 2, &mask));
+    double mean[3];
+    render_lit_plane(f->scene, plane, mask, mean);
+    const double unit = lit_plane_mean();
+    for (int c = 0; c < 3; ++c) {
+        const double expected = (1 - o) * rho[c] * unit;
+        print_message("mask channel %d: mean %.5f, expected %.5f\n", c, mean[c], expected);
+        assert_close(mean[c], expected, 0.02 * expected);
+    }
+}
+
+static void test_blend_and_mask_bad_values(void **state) {
+    fixture *f = *state;
+    const double grey[3] = {0.5, 0.5, 0.5}, big = 1.5, nan_value = NAN;
+    uint32_t d = 0;
+    assert_ppm_ok(ppm_scene_add_diffuse_material(f->scene, grey, &d));
+    const ppm_param too_big[] = {numbers("weight", &big, 1), id_param("bsdf_0", PPM_PARAM_MATERIAL, d),
+                                 id_param("bsdf_1", PPM_PARAM_MATERIAL, d)};
+    assert_ppm_error(ppm_scene_add_material(f->scene, "blendbsdf", too_big, 3, NULL), PPM_ERROR_INVALID_ARGUMENT,
+                     "blendbsdf material: parameter 'weight' must lie in [0, 1]");
+    const ppm_param missing[] = {id_param("bsdf_0", PPM_PARAM_MATERIAL, d)};
+    assert_ppm_error(ppm_scene_add_material(f->scene, "blendbsdf", missing, 1, NULL), PPM_ERROR_INVALID_ARGUMENT,
+                     "'bsdf_1' is required");
+    const ppm_param dangling[] = {id_param("bsdf_0", PPM_PARAM_MATERIAL, d),
+                                  id_param("bsdf_1", PPM_PARAM_MATERIAL, 99)};
+    assert_ppm_error(ppm_scene_add_material(f->scene, "blendbsdf", dangling, 2, NULL), PPM_ERROR_INVALID_ARGUMENT,
+                     "99");
+    const ppm_param bad_opacity[] = {numbers("opacity", &nan_value, 1), id_param("bsdf", PPM_PARAM_MATERIAL, d)};
+    assert_ppm_error(ppm_scene_add_material(f->scene, "mask", bad_opacity, 2, NULL), PPM_ERROR_INVALID_ARGUMENT,
+                     "mask material: parameter 'opacity' must be finite");
+    uint32_t texture = 0, mask = 0;
+    assert_ppm_ok(ppm_scene_add_texture(f->scene, "checkerboard", NULL, 0, &texture));
+    const ppm_param textured[] = {id_param("opacity", PPM_PARAM_TEXTURE, texture),
+                                  id_param("bsdf", PPM_PARAM_MATERIAL, d)};
+    assert_ppm_ok(ppm_scene_add_material(f->scene, "mask", textured, 2, &mask));
 }
 
 int main(void) {
@@ -237,6 +389,11 @@ int main(void) {
                                         scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(test_malformed_lists_are_refused, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(test_bitmap_textures, scene_fixture_setup, scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(test_checkerboard_textures, scene_fixture_setup, scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(test_blendbsdf_renders_the_weighted_mean, scene_fixture_setup,
+                                        scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(test_mask_passes_light_through, scene_fixture_setup, scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(test_blend_and_mask_bad_values, scene_fixture_setup, scene_fixture_teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -485,6 +485,72 @@ static void test_examples_load(void **state) {
     }
 }
 
+/* Renders `path` (its own 16 x 16 film) for 4 passes and returns the mean radiance. */
+static double mean_of_file(fixture *f, const char *path) {
+    ppm_scene_file file = NULL;
+    if (ppm_scene_file_load(f->context, path, &file) != PPM_OK) fail_msg("%s", ppm_last_error_message());
+    ppm_renderer renderer = NULL;
+    assert_int_equal(ppm_scene_file_create_renderer(file, &renderer), PPM_OK);
+    assert_int_equal(ppm_renderer_set_int(renderer, "photons_per_pass", 2000), PPM_OK);
+    for (int pass = 0; pass < 4; ++pass) assert_int_equal(ppm_render_pass(renderer), PPM_OK);
+    float rgb[16 * 16 * 3];
+    assert_int_equal(ppm_renderer_get_layer(renderer, "radiance", rgb, 16 * 16 * 3), PPM_OK);
+    double sum = 0;
+    for (int i = 0; i < 16 * 16 * 3; ++i) sum += rgb[i];
+    ppm_renderer_release(renderer);
+    ppm_scene_file_release(file);
+    return sum / (16 * 16 * 3);
+}
+
+/* blendbsdf (a named and a nested BSDF), mask and checkerboard, in JSON and in Mitsuba XML
+ * (references in the roles bsdf_0 and bsdf, nested elements named bsdf_1): the same scene,
+ * the same image. */
+static void test_blend_mask_and_checkerboard_in_json_and_xml(void **state) {
+    fixture *f = *state;
+    write_text(
+        f->path,
+        "{\"sensor\": {\"fov\": 60, \"film\": {\"width\": 16, \"height\": 16},\n"
+        "   \"to_world\": {\"look_at\": {\"origin\": [0, 0, 3], \"target\": [0, 0, 0]}}},\n"
+        " \"bsdfs\": {\"red\": {\"type\": \"diffuse\", \"reflectance\": [0.8, 0.1, 0.1]}},\n"
+        " \"shapes\": [\n"
+        "  {\"type\": \"rectangle\", \"bsdf\": {\"type\": \"blendbsdf\", \"weight\": 0.25, \"bsdf_0\": \"red\",\n"
+        "    \"bsdf_1\": {\"type\": \"diffuse\", \"reflectance\": {\"type\": \"checkerboard\",\n"
+        "      \"color0\": [0.9, 0.9, 0.9], \"to_uv\": {\"scale\": [4, 4, 1]}}}}},\n"
+        "  {\"type\": \"sphere\", \"center\": [0, 0, 1], \"radius\": 0.3,\n"
+        "   \"bsdf\": {\"type\": \"mask\", \"opacity\": 0.5, \"bsdf\": \"red\"}}],\n"
+        " \"emitters\": [{\"type\": \"point\", \"position\": [0, 0, 2], \"intensity\": [2, 2, 2]}]}\n");
+    const double json = mean_of_file(f, f->path);
+    char xml[400];
+    snprintf(xml, sizeof xml, "%s/scene.xml", f->folder);
+    write_text(xml, "<scene version=\"3.0.0\">\n"
+                    " <sensor type=\"perspective\"><float name=\"fov\" value=\"60\"/>\n"
+                    "  <transform name=\"to_world\"><lookat origin=\"0, 0, 3\" target=\"0, 0, 0\" up=\"0, 1, 0\"/>"
+                    "</transform>\n"
+                    "  <film type=\"hdrfilm\"><integer name=\"width\" value=\"16\"/>"
+                    "<integer name=\"height\" value=\"16\"/></film></sensor>\n"
+                    " <bsdf type=\"diffuse\" id=\"red\"><rgb name=\"reflectance\" value=\"0.8, 0.1, 0.1\"/></bsdf>\n"
+                    " <shape type=\"rectangle\"><bsdf type=\"blendbsdf\"><float name=\"weight\" value=\"0.25\"/>\n"
+                    "  <ref name=\"bsdf_0\" id=\"red\"/>\n"
+                    "  <bsdf type=\"diffuse\" name=\"bsdf_1\"><texture type=\"checkerboard\" name=\"reflectance\">\n"
+                    "   <rgb name=\"color0\" value=\"0.9, 0.9, 0.9\"/>"
+                    "<transform name=\"to_uv\"><scale x=\"4\" y=\"4\"/></transform></texture></bsdf>\n"
+                    " </bsdf></shape>\n"
+                    " <shape type=\"sphere\"><point name=\"center\" x=\"0\" y=\"0\" z=\"1\"/>"
+                    "<float name=\"radius\" value=\"0.3\"/>\n"
+                    "  <bsdf type=\"mask\"><float name=\"opacity\" value=\"0.5\"/><ref id=\"red\"/></bsdf></shape>\n"
+                    " <emitter type=\"point\"><point name=\"position\" x=\"0\" y=\"0\" z=\"2\"/>"
+                    "<rgb name=\"intensity\" value=\"2, 2, 2\"/></emitter>\n"
+                    "</scene>\n");
+    const double from_xml = mean_of_file(f, xml);
+    print_message("blend/mask/checkerboard scene: JSON mean %.6f, XML mean %.6f\n", json, from_xml);
+    assert_true(json > 0.01);
+    assert_close(from_xml, json, 1e-6 * json);
+    EXPECT_ERROR(f,
+                 "{\"shapes\": [{\"type\": \"rectangle\", \"bsdf\": {\"type\": \"blendbsdf\", \"weight\": 2,\n"
+                 "  \"bsdf_0\": {\"type\": \"diffuse\"}, \"bsdf_1\": {\"type\": \"diffuse\"}}}]}",
+                 PPM_ERROR_PARSE, "scene.json:1:", "'weight' must lie in [0, 1]");
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_small_box_builds_what_it_says, setup, teardown),
@@ -495,6 +561,7 @@ int main(void) {
         cmocka_unit_test_setup_teardown(test_unreadable_bytes_and_deep_nesting, setup, teardown),
         cmocka_unit_test_setup_teardown(test_overflowing_magnitudes_are_refused_where_they_stand, setup, teardown),
         cmocka_unit_test_setup_teardown(test_examples_load, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_blend_mask_and_checkerboard_in_json_and_xml, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

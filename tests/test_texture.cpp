@@ -62,11 +62,112 @@ void srgb_png_decodes_to_linear_with_top_row_at_v0(void **) {
 
 void material_applies_mapping_and_keeps_energy(void **) {
     const auto texture = std::make_shared<Texture>(1, 1, std::vector<float>{2.0f, 0.5f, 0.25f}, "bright");
-    Material m{Bsdf::diffuse(Rgb(0.1)), texture, {4, 4, 0.1, 0.2}};
+    Material m{Bsdf::diffuse(Rgb(0.1)), TextureRef::bitmap(texture, TextureMapping::scale_offset(4, 4, 0.1, 0.2))};
     const Bsdf b = m.at(0.3, 0.7);
     assert_close(b.reflectance().r, 1.0, 0); // clamped: a reflectance above 1 would create energy
     assert_close(b.reflectance().g, 0.5, 1e-7);
     assert_close(b.reflectance().b, 0.25, 1e-7);
+}
+
+// A 4 x 1 image of values 0, 1, 2, 3 (grey): index arithmetic is easy to check.
+std::shared_ptr<const Texture> ramp() {
+    return std::make_shared<Texture>(4, 1, std::vector<float>{0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3}, "ramp");
+}
+
+// Nearest takes the texel under (u, v): floor(u * width), no half-texel shift (Mitsuba 3).
+void nearest_filter_takes_the_texel_under_uv(void **) {
+    const auto t = ramp();
+    const TextureFilter n = TextureFilter::Nearest;
+    assert_close(t->lookup(0.0, 0.5, n).r, 0, 0);
+    assert_close(t->lookup(0.24, 0.5, n).r, 0, 0);
+    assert_close(t->lookup(0.26, 0.5, n).r, 1, 0);
+    assert_close(t->lookup(0.99, 0.5, n).r, 3, 0);
+    assert_close(t->lookup(1.1, 0.5, n, TextureWrap::Repeat).r, 0, 0);  // texel 4 -> 0
+    assert_close(t->lookup(1.1, 0.5, n, TextureWrap::Mirror).r, 3, 0);  // texel 4 -> 3
+    assert_close(t->lookup(1.3, 0.5, n, TextureWrap::Mirror).r, 2, 0);  // texel 5 -> 2
+    assert_close(t->lookup(-0.1, 0.5, n, TextureWrap::Mirror).r, 0, 0); // texel -1 -> 0
+    assert_close(t->lookup(-0.3, 0.5, n, TextureWrap::Mirror).r, 1, 0); // texel -2 -> 1
+    assert_close(t->lookup(1.9, 0.5, n, TextureWrap::Mirror).r, 0, 0);  // texel 7 -> 0
+    assert_close(t->lookup(2.1, 0.5, n, TextureWrap::Mirror).r, 0, 0);  // texel 8 -> 0 (period 2)
+    assert_close(t->lookup(-5.0, 0.5, n, TextureWrap::Clamp).r, 0, 0);
+    assert_close(t->lookup(7.0, 0.5, n, TextureWrap::Clamp).r, 3, 0);
+}
+
+// Bilinear weights the two texels around u * width - 0.5; each wrap mode picks the
+// neighbour beyond the edge.
+void bilinear_filter_wraps_each_neighbour(void **) {
+    const auto t = ramp();
+    const TextureFilter b = TextureFilter::Bilinear;
+    assert_close(t->lookup(0.125, 0.5, b).r, 0, 1e-12);                      // centre of texel 0
+    assert_close(t->lookup(0.25, 0.5, b).r, 0.5, 1e-12);                     // halfway 0 -> 1
+    assert_close(t->lookup(0.5, 0.5, b).r, 1.5, 1e-12);                      // halfway 1 -> 2
+    assert_close(t->lookup(0.0, 0.5, b, TextureWrap::Repeat).r, 1.5, 1e-12); // (3 + 0) / 2
+    assert_close(t->lookup(0.0, 0.5, b, TextureWrap::Mirror).r, 0, 1e-12);   // (0 + 0) / 2
+    assert_close(t->lookup(0.0, 0.5, b, TextureWrap::Clamp).r, 0, 1e-12);
+    assert_close(t->lookup(1.0, 0.5, b, TextureWrap::Repeat).r, 1.5, 1e-12);
+    assert_close(t->lookup(1.0, 0.5, b, TextureWrap::Mirror).r, 3, 1e-12); // (3 + 3) / 2
+    assert_close(t->lookup(1.0, 0.5, b, TextureWrap::Clamp).r, 3, 1e-12);
+    assert_close(t->lookup(1.125, 0.5, b, TextureWrap::Mirror).r, 3, 1e-12); // texel 4 = 3
+    assert_close(t->lookup(1.25, 0.5, b, TextureWrap::Mirror).r, 2.5, 1e-12);
+    assert_close(t->lookup(-3.0, 0.5, b, TextureWrap::Clamp).r, 0, 1e-12);
+    assert_close(t->lookup(0.9375, 0.5, b, TextureWrap::Clamp).r, 3, 1e-12);     // past the last centre
+    assert_close(t->lookup(0.9375, 0.5, b, TextureWrap::Repeat).r, 2.25, 1e-12); // 3 * 0.75 + 0 * 0.25
+}
+
+// raw keeps an 8-bit PNG's stored values (128 / 255), the default decodes sRGB.
+void raw_keeps_stored_values(void **) {
+    const std::string path = write_png();
+    const auto decoded = Texture::load(path), raw = Texture::load(path, true);
+    const TextureFilter n = TextureFilter::Nearest;
+    assert_close(decoded->lookup(0.75, 0.75, n).g, srgb_to_linear(128 / 255.0), 1e-6);
+    assert_close(raw->lookup(0.75, 0.75, n).g, 128 / 255.0, 1e-6);
+    assert_close(raw->lookup(0.25, 0.25, n).r, 1.0, 0);
+    std::remove(path.c_str());
+}
+
+// to_uv's full 2D affine map: a quarter turn u = -t + 1, v = s sends (s, t) = (0.1, 0.9)
+// to (0.1, 0.1), so the top left texel (red) of the 2 x 2 PNG.
+void to_uv_rotation(void **) {
+    const std::string path = write_png();
+    TextureMapping turn;
+    turn.m[0][0] = 0;
+    turn.m[0][1] = -1;
+    turn.m[0][2] = 1;
+    turn.m[1][0] = 1;
+    turn.m[1][1] = 0;
+    turn.m[1][2] = 0;
+    const TextureRef t = TextureRef::bitmap(Texture::load(path), turn, TextureFilter::Nearest);
+    const Rgb red = t.eval(0.1, 0.9), green = t.eval(0.1, 0.4), blue = t.eval(0.9, 0.9);
+    assert_close(red.r, 1, 0);
+    assert_close(green.g, 1, 0); // (u, v) = (0.6, 0.1): top right
+    assert_close(blue.b, 1, 0);  // (u, v) = (0.1, 0.9): bottom left
+    double u, v;
+    TextureMapping::scale_offset(2, 3, 0.5, 0.25).apply(1, 1, &u, &v);
+    assert_close(u, 2.5, 0);
+    assert_close(v, 3.25, 0);
+    std::remove(path.c_str());
+}
+
+// Mitsuba 3 checkerboard: color0 where frac(u) and frac(v) are both > 0.5 or both not.
+void checkerboard_cells(void **) {
+    const TextureRef c = TextureRef::checkerboard(Rgb(0.4), Rgb(0.2));
+    assert_close(c.eval(0.25, 0.25).r, 0.4, 0);
+    assert_close(c.eval(0.75, 0.75).r, 0.4, 0);
+    assert_close(c.eval(0.75, 0.25).r, 0.2, 0);
+    assert_close(c.eval(0.25, 0.75).r, 0.2, 0);
+    assert_close(c.eval(0.5, 0.25).r, 0.4, 0);   // exactly 0.5 is not > 0.5
+    assert_close(c.eval(-0.25, 0.25).r, 0.2, 0); // frac(-0.25) = 0.75
+    const TextureRef scaled =
+        TextureRef::checkerboard(Rgb(1, 0, 0), Rgb(0, 0, 1), TextureMapping::scale_offset(4, 4, 0, 0));
+    assert_close(scaled.eval(0.2, 0.05).b, 1, 0); // u = 0.8, v = 0.2
+    assert_close(scaled.eval(0.3, 0.05).r, 1, 0); // u = 1.2
+    // As a scalar (eval_1: weights, opacities) Mitsuba swaps the cells: color1 at (0.1, 0.1).
+    assert_close(TextureRef::checkerboard(Rgb(1), Rgb(0)).eval_1(0.1, 0.1), 0, 0);
+    assert_close(TextureRef::checkerboard(Rgb(1), Rgb(0)).eval_1(0.7, 0.1), 1, 1e-6);
+    assert_close(TextureRef::checkerboard(Rgb(0, 1, 0), Rgb(0)).eval_1(0.7, 0.1), 0.715160, 1e-12);
+    // A checkerboard textures a material like an image.
+    const Material m{Bsdf::diffuse(Rgb(0.5)), scaled};
+    assert_close(m.at(0.2, 0.05).reflectance().b, 1, 0);
 }
 
 void bad_files_are_clear_errors(void **) {
@@ -219,6 +320,11 @@ int main() {
     const CMUnitTest tests[] = {
         cmocka_unit_test(srgb_png_decodes_to_linear_with_top_row_at_v0),
         cmocka_unit_test(material_applies_mapping_and_keeps_energy),
+        cmocka_unit_test(nearest_filter_takes_the_texel_under_uv),
+        cmocka_unit_test(bilinear_filter_wraps_each_neighbour),
+        cmocka_unit_test(raw_keeps_stored_values),
+        cmocka_unit_test(to_uv_rotation),
+        cmocka_unit_test(checkerboard_cells),
         cmocka_unit_test(bad_files_are_clear_errors),
         cmocka_unit_test(truncated_png_is_a_quiet_io_error),
         cmocka_unit_test(exr_attribute_beyond_the_file_is_refused),

@@ -37,11 +37,8 @@ ColorOrTexture reflectance_or_texture(ppm_scene_t &scene, Params &p, const char 
 }
 
 uint32_t add(ppm_scene_t &scene, const Bsdf &bsdf, const ColorOrTexture &color = {}) {
-    Material material{bsdf, nullptr, {}};
-    if (color.texture) {
-        material.texture = color.texture->texture;
-        material.mapping = color.texture->mapping;
-    }
+    Material material{bsdf, {}};
+    if (color.texture) material.texture = *color.texture;
     return scene.shading.add_material(std::move(material));
 }
 
@@ -180,6 +177,39 @@ uint32_t add_twosided(ppm_scene_t &scene, Params &p) {
     return scene.shading.add_material(std::move(copy));
 }
 
+// A float in [0, 1] that a texture may replace (its luminance, clamped to [0, 1] at lookups).
+ppm::TextureRef unit_float_or_texture(ppm_scene_t &scene, Params &p, const char *name, double fallback, double *value) {
+    if (p.is_texture(name)) {
+        *value = fallback;
+        return scene.shading.texture(p.texture(name));
+    }
+    *value = p.number_in(name, 0, 1, fallback);
+    return {};
+}
+
+// Mitsuba 3 src/bsdfs/blendbsdf.cpp: (1 - weight) bsdf_0 + weight bsdf_1, weight 0.5 by
+// default. The renderer picks one of the two at each hit with these probabilities.
+uint32_t add_blendbsdf(ppm_scene_t &scene, Params &p) {
+    double weight = 0.5;
+    const ppm::TextureRef weight_texture = unit_float_or_texture(scene, p, "weight", 0.5, &weight);
+    const uint32_t bsdf_0 = p.material("bsdf_0"), bsdf_1 = p.material("bsdf_1");
+    scene.shading.material(bsdf_0); // both must exist (throws naming the id)
+    scene.shading.material(bsdf_1);
+    p.finish();
+    return scene.shading.add_material(Material::blend(bsdf_0, bsdf_1, weight, weight_texture));
+}
+
+// Mitsuba 3 src/bsdfs/mask.cpp: the nested bsdf with probability `opacity` (default 0.5),
+// else no surface at all (light passes straight through).
+uint32_t add_mask(ppm_scene_t &scene, Params &p) {
+    double opacity = 0.5;
+    const ppm::TextureRef opacity_texture = unit_float_or_texture(scene, p, "opacity", 0.5, &opacity);
+    const uint32_t inner = p.material("bsdf");
+    scene.shading.material(inner);
+    p.finish();
+    return scene.shading.add_material(Material::mask(inner, opacity, opacity_texture));
+}
+
 struct MaterialType {
     const char *name;
     uint32_t (*add)(ppm_scene_t &, Params &);
@@ -195,6 +225,8 @@ const MaterialType kMaterialTypes[] = {
     {"thindielectric", add_thindielectric},
     {"roughdielectric", add_roughdielectric},
     {"roughplastic", add_roughplastic},
+    {"blendbsdf", add_blendbsdf},
+    {"mask", add_mask},
 };
 
 } // namespace

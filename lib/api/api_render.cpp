@@ -43,7 +43,7 @@ ppm::Rgb read_reflectance(const double *c, const char *name) {
 
 template <class Make> ppm_status add_material(ppm_scene scene, uint32_t *out_id, Make &&make) {
     return scene_call(scene, [&](ppm_scene_t &s) {
-        ppm::Material material{make(), nullptr, {}};
+        ppm::Material material{make(), {}};
         write_id(out_id, s.shading.add_material(std::move(material)));
     });
 }
@@ -117,25 +117,29 @@ ppm_status ppm_scene_set_material_texture(ppm_scene scene, uint32_t material_id,
     return scene_call(scene, [&](ppm_scene_t &s) {
         require(path, "path");
         ppm::Material &material = s.shading.material(material_id);
+        if (material.kind != ppm::Material::Kind::Single)
+            invalid_argument("material " + std::to_string(material_id) +
+                             " is a blend or mask of others: texture those instead");
         const ppm::Bsdf::Type type = material.bsdf.type();
         if (type == ppm::Bsdf::Type::Dielectric || type == ppm::Bsdf::Type::ThinDielectric ||
             type == ppm::Bsdf::Type::RoughDielectric)
             invalid_argument("material " + std::to_string(material_id) + " is glass, which has no colour to texture");
-        ppm::TextureMapping mapping;
+        double scale_uv[2] = {1, 1}, offset_uv[2] = {0, 0};
         if (scale) {
             if (!std::isfinite(scale[0]) || !std::isfinite(scale[1]) || scale[0] == 0 || scale[1] == 0)
                 invalid_argument("texture scale must be finite and non-zero");
-            mapping.scale_u = scale[0];
-            mapping.scale_v = scale[1];
+            scale_uv[0] = scale[0];
+            scale_uv[1] = scale[1];
         }
         if (offset) {
             if (!std::isfinite(offset[0]) || !std::isfinite(offset[1]))
                 invalid_argument("texture offset must be finite");
-            mapping.offset_u = offset[0];
-            mapping.offset_v = offset[1];
+            offset_uv[0] = offset[0];
+            offset_uv[1] = offset[1];
         }
-        material.texture = ppm::Texture::load(path);
-        material.mapping = mapping;
+        material.texture = ppm::TextureRef::bitmap(
+            ppm::Texture::load(path),
+            ppm::TextureMapping::scale_offset(scale_uv[0], scale_uv[1], offset_uv[0], offset_uv[1]));
     });
 }
 

@@ -96,6 +96,13 @@ Bsdf Bsdf::coated(const Rgb &diffuse_reflectance, double int_ior, double ext_ior
     return b.with_reflectance(diffuse_reflectance);
 }
 
+Bsdf Bsdf::null() {
+    Bsdf b;
+    b.type_ = Type::Null;
+    b.reflectance_ = Rgb(1.0);
+    return b;
+}
+
 Bsdf Bsdf::with_reflectance(const Rgb &reflectance) const {
     Bsdf b = *this;
     b.reflectance_ = reflectance;
@@ -117,6 +124,7 @@ double Bsdf::specular_probability(const Vec3 &wo) const {
     case Type::Mirror:
     case Type::Conductor:
     case Type::Dielectric:
+    case Type::Null:
     case Type::ThinDielectric: return 1.0;
     case Type::Coated: return coat_specular_probability(fresnel_dielectric(std::fabs(wo.z), eta_));
     case Type::RoughConductor:
@@ -138,6 +146,7 @@ bool Bsdf::gathers(double gather_alpha) const {
     case Type::Conductor:
     case Type::Dielectric:
     case Type::ThinDielectric:
+    case Type::Null:
     case Type::RoughDielectric: return false;
     }
     return false;
@@ -152,6 +161,13 @@ BsdfSample Bsdf::sample(const Vec3 &wo, double u_lobe, double u1, double u2, Tra
     BsdfSample s;
     if (wo.z == 0) return s;
 
+    if (type_ == Type::Null) {
+        s.wi = wo * -1.0;
+        s.pdf = 1.0;
+        s.is_specular = true;
+        s.weight = Rgb(1.0);
+        return s;
+    }
     if (type_ == Type::Dielectric) {
         const FresnelTerms fresnel = fresnel_dielectric_terms(wo.z, eta_);
         const double r = fresnel.reflectance();
@@ -214,6 +230,7 @@ BsdfSample Bsdf::sample(const Vec3 &wo, double u_lobe, double u1, double u2, Tra
     case Type::RoughPlastic: s = sample_rough_plastic(w, u_lobe, u1, u2); break;
     case Type::Dielectric:
     case Type::ThinDielectric:
+    case Type::Null:
     case Type::RoughDielectric: break;
     }
     if (!(s.pdf > 0)) return BsdfSample{};
@@ -238,6 +255,7 @@ Rgb Bsdf::eval(const Vec3 &wo, const Vec3 &wi, TransportMode mode) const {
     case Type::Conductor:
     case Type::Dielectric:
     case Type::ThinDielectric:
+    case Type::Null:
     case Type::RoughDielectric: break;
     }
     return Rgb();
@@ -263,6 +281,7 @@ FixedWoLobe Bsdf::fixed_wo(const Vec3 &wo, const Rgb &weight) const {
     case Type::Conductor:
     case Type::Dielectric:
     case Type::ThinDielectric:
+    case Type::Null:
     case Type::RoughDielectric: break;
     }
     return lobe;
@@ -282,6 +301,7 @@ double Bsdf::pdf(const Vec3 &wo, const Vec3 &wi) const {
     case Type::Conductor:
     case Type::Dielectric:
     case Type::ThinDielectric:
+    case Type::Null:
     case Type::RoughDielectric: break;
     }
     return 0.0;

@@ -121,6 +121,7 @@ public:
         ThinDielectric,
         RoughDielectric,
         RoughPlastic,
+        Null,
     };
 
     // Black diffuse: scatters nothing (a placeholder that needs no validation).
@@ -174,6 +175,9 @@ public:
     // (polypropylene), ext_ior 1.000277, diffuse_reflectance 0.5.
     static Bsdf rough_plastic(const Rgb &diffuse_reflectance, MicrofacetType distribution, double alpha, double int_ior,
                               double ext_ior, bool sample_visible = true);
+    // No surface: a specular lobe that passes light straight through (wi = -wo, weight 1),
+    // the pass-through part of Mitsuba 3's `mask` (src/bsdfs/mask.cpp).
+    static Bsdf null();
 
     // The same material with another base/specular colour (e.g. from a texture), without
     // revalidating or recomputing the coat's Fdr. Components must lie in [0, 1].

@@ -64,7 +64,7 @@ void PhotonTracer::trace_photon(const RenderScene &scene, const RenderSettings &
     SurfacePoint sp;
     const ppm_hit *leaving = nullptr; // photons start at a light, not at a hit
     for (int depth = 0; depth < settings.max_depth; ++depth) {
-        if (!scene.intersect(ray, sp, leaving)) return;
+        if (!scene.intersect(ray, sp, leaving, &rng)) return;
         const Vec3 direction = Vec3::from(ray.dir);
         // Depth 0 is direct light, which the eye pass estimates by itself (unless told not to).
         if ((depth > 0 || !settings.direct_lighting) && sp.bsdf.gathers(settings.glossy_gather_alpha) &&

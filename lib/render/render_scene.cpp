@@ -9,6 +9,8 @@
 #include "scene/sphere_geometry.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 
 namespace ppm {
 
@@ -50,7 +52,8 @@ Light area_light(const Geometry &g, uint32_t geom_id, const Rgb &emission, doubl
 
 RenderScene::RenderScene(const Scene &scene, const SceneShading &shading) : scene_(&scene) {
     if (!scene.committed()) fail(PPM_ERROR_INVALID_OPERATION, "the scene must be committed before rendering");
-    const Material grey{Bsdf::diffuse(Rgb(0.5)), nullptr, {}};
+    const Material grey{Bsdf::diffuse(Rgb(0.5)), {}};
+    materials_ = shading.materials();
     // Photons leave area lights a little more than a hit's error bound off the surface.
     const double offset =
         4 * scene.absolute_tolerance() + 1e-12 * max_abs_component(scene.bounds().upper - scene.bounds().lower);
@@ -103,39 +106,89 @@ Rgb RenderScene::environment(const Vec3 &direction) const {
     return sum;
 }
 
-bool RenderScene::intersect(const ppm_ray &ray, SurfacePoint &out, const ppm_hit *leaving) const {
+bool RenderScene::intersect(const ppm_ray &ray, SurfacePoint &out, const ppm_hit *leaving, CounterRng *rng) const {
     scene_->intersect(ray, out.hit, false, RayHints{leaving});
     if (out.hit.geom_id == PPM_INVALID_ID) return false;
-    shade(ray, out);
+    shade(ray, out, rng);
     return true;
 }
 
-void RenderScene::intersect_stream(const ppm_ray *rays, size_t count, SurfacePoint *out, bool *found) const {
+void RenderScene::intersect_stream(const ppm_ray *rays, size_t count, SurfacePoint *out, bool *found,
+                                   CounterRng *rngs) const {
     ppm_hit hits[Scene::max_stream];
     count = std::min(count, Scene::max_stream);
     scene_->intersect_stream(rays, nullptr, count, hits, false);
     for (size_t i = 0; i < count; ++i) {
         out[i].hit = hits[i];
         found[i] = hits[i].geom_id != PPM_INVALID_ID;
-        if (found[i]) shade(rays[i], out[i]);
+        if (found[i]) shade(rays[i], out[i], rngs ? &rngs[i] : nullptr);
     }
 }
 
-void RenderScene::shade(const ppm_ray &ray, SurfacePoint &out) const {
+namespace {
+
+std::uint64_t mix64(std::uint64_t x) { // splitmix64's finaliser
+    x ^= x >> 30;
+    x *= 0xbf58476d1ce4e5b9ull;
+    x ^= x >> 27;
+    x *= 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+// A uniform number in [0, 1) from the ray and the hit, for picks made without a generator.
+double hash_uniform(const ppm_ray &ray, const ppm_hit &hit, int level) {
+    std::uint64_t h =
+        mix64(static_cast<std::uint64_t>(hit.geom_id) << 32 ^ hit.prim_id ^ 0x9e3779b97f4a7c15ull * (level + 1));
+    const double values[6] = {ray.org[0], ray.org[1], ray.org[2], ray.dir[0], ray.dir[1], ray.dir[2]};
+    for (double v : values) {
+        std::uint64_t bits;
+        std::memcpy(&bits, &v, sizeof bits);
+        h = mix64(h ^ bits);
+    }
+    return uniform_from_bits(h);
+}
+
+} // namespace
+
+void RenderScene::shade(const ppm_ray &ray, SurfacePoint &out, CounterRng *rng) const {
     const Geometry &g = scene_->geometry(out.hit.geom_id);
     out.p = Vec3::from(out.hit.p);
     out.ng = Vec3::from(out.hit.ng);
     out.frame = Frame::from_normal(Vec3::from(out.hit.ns));
     const Vec3 wo = normalize(Vec3::from(ray.dir)) * -1.0;
     out.wo_local = out.frame.to_local(wo);
-    const Material &material = geometry_materials_[out.hit.geom_id];
-    if (material.texture) {
-        g.compute_uv(out.hit);
-        double s, t;
-        g.texture_coordinates(out.hit, &s, &t);
-        out.bsdf = material.at(s, t);
+    const Material *material = &geometry_materials_[out.hit.geom_id];
+    bool have_uv = false;
+    double s = 0, t = 0;
+    const auto uv = [&] {
+        if (!have_uv) {
+            g.compute_uv(out.hit);
+            g.texture_coordinates(out.hit, &s, &t);
+            have_uv = true;
+        }
+    };
+    // Blends and masks pick one component with its probability: the expected BSDF is their
+    // weighted sum, for camera paths and photons alike (one uniform number per level).
+    bool pass_through = false;
+    for (int level = 0; material->kind != Material::Kind::Single; ++level) {
+        if (material->weight_texture) uv();
+        const double w = material->weight_at(s, t);
+        const double u = rng ? rng->uniform() : hash_uniform(ray, out.hit, level);
+        if (material->kind == Material::Kind::Mask && u >= w) {
+            pass_through = true;
+            break;
+        }
+        const uint32_t next =
+            material->kind == Material::Kind::Blend && u < w ? material->parts[1] : material->parts[0];
+        material = &materials_[next];
+    }
+    if (pass_through) {
+        out.bsdf = Bsdf::null();
+    } else if (material->texture) {
+        uv();
+        out.bsdf = material->at(s, t);
     } else {
-        out.bsdf = material.bsdf;
+        out.bsdf = material->bsdf;
     }
     // Emitted on the side of the shading normal, the normal a light samples with (light.h);
     // the same as the geometric one except on meshes with vertex normals.
@@ -144,8 +197,10 @@ void RenderScene::shade(const ppm_ray &ray, SurfacePoint &out) const {
 }
 
 bool RenderScene::gathers_full_lobes(double gather_alpha) const {
-    for (const Material &m : geometry_materials_)
-        if (m.bsdf.needs_full_eval() && m.bsdf.gathers(gather_alpha)) return true;
+    // Every material, as blends and masks reach their components at hits.
+    for (const std::vector<Material> *list : {&geometry_materials_, &materials_})
+        for (const Material &m : *list)
+            if (m.bsdf.needs_full_eval() && m.bsdf.gathers(gather_alpha)) return true;
     return false;
 }
 

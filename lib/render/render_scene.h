@@ -7,6 +7,7 @@
 
 #include <ppm/ppm.h>
 
+#include "photon/random.h"
 #include "render/bsdf.h"
 #include "render/light.h"
 #include "render/material.h"
@@ -45,11 +46,17 @@ public:
     size_t pick_light(double u, double *probability) const;
 
     // Closest hit along ray, described; false on a miss. `leaving`: the hit the ray was
-    // spawned from, if any (RayHints::leaving); it may be &out.hit.
-    bool intersect(const ppm_ray &ray, SurfacePoint &out, const ppm_hit *leaving = nullptr) const;
+    // spawned from, if any (RayHints::leaving); it may be &out.hit. `rng`: the path's
+    // generator, drawn from (once per level) only where a blend or mask material picks its
+    // component; without one the pick comes from a hash of the ray and the hit, which is as
+    // deterministic.
+    bool intersect(const ppm_ray &ray, SurfacePoint &out, const ppm_hit *leaving = nullptr,
+                   CounterRng *rng = nullptr) const;
     // The same for up to Scene::max_stream rays from no surface (a camera's), traced as a
-    // coherent stream: found[i] and out[i] as intersect(rays[i], out[i]) gives.
-    void intersect_stream(const ppm_ray *rays, size_t count, SurfacePoint *out, bool *found) const;
+    // coherent stream: found[i] and out[i] as intersect(rays[i], out[i], nullptr, &rngs[i])
+    // gives (rngs may be null).
+    void intersect_stream(const ppm_ray *rays, size_t count, SurfacePoint *out, bool *found,
+                          CounterRng *rngs = nullptr) const;
     // Whether anything blocks a shadow ray leaving `leaving` (may be null) that stops short of
     // `light`'s surface, so that the light's own geometry cannot block it.
     bool occluded(const ppm_ray &ray, const ppm_hit *leaving, const Light &light) const {
@@ -67,10 +74,11 @@ public:
 
 private:
     // Fills `out` from its described hit, seen along `ray`.
-    void shade(const ppm_ray &ray, SurfacePoint &out) const;
+    void shade(const ppm_ray &ray, SurfacePoint &out, CounterRng *rng) const;
 
     const Scene *scene_;
     std::vector<Material> geometry_materials_; // one per geometry
+    std::vector<Material> materials_;          // the scene's: the components of blends and masks
     std::vector<Rgb> geometry_emission_;       // one per geometry
     std::vector<Light> lights_;
     std::vector<size_t> environment_lights_; // indices into lights_

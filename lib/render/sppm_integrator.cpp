@@ -44,7 +44,7 @@ void SppmIntegrator::trace_paths(const PassInputs &in, std::uint32_t first, std:
         rngs[k] = CounterRng(in.settings.seed, kCameraStream, pass, first + k);
         rays[k] = camera_ray(in.camera, first + k, rngs[k]);
     }
-    in.scene.intersect_stream(rays, count, hits, found);
+    in.scene.intersect_stream(rays, count, hits, found, rngs);
     VisiblePoint *const vps = group.vps;
     Rgb *const direct = group.direct;
     const ppm_hit **const at = group.at;
@@ -88,7 +88,7 @@ Rgb SppmIntegrator::follow_path(const PassInputs &in, CounterRng &rng, ppm_ray r
         if (weight.is_black()) break;
         if (depth + 1 >= in.settings.max_depth) break;
         ray = spawn_ray(sp.hit, sp.frame.to_world(s.wi));
-        found = in.scene.intersect(ray, sp, &sp.hit); // leaving sp.hit
+        found = in.scene.intersect(ray, sp, &sp.hit, &rng); // leaving sp.hit
     }
     return direct;
 }

@@ -113,7 +113,7 @@ constexpr double kMaxTrustedDecode = 256.0 * 1024 * 1024;
 
 } // namespace
 
-std::shared_ptr<const Texture> Texture::load(const std::string &path) {
+std::shared_ptr<const Texture> Texture::load(const std::string &path, bool raw) {
     check_png_is_complete(path);
     check_exr_header_fits(path);
     auto input = OIIO::ImageInput::open(path);
@@ -143,7 +143,7 @@ std::shared_ptr<const Texture> Texture::load(const std::string &path) {
                      });
     if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
         fail(PPM_ERROR_IO, "texture '" + path + "': " + input->geterror());
-    const bool srgb = is_srgb_encoded(spec);
+    const bool srgb = !raw && is_srgb_encoded(spec);
     for (long long i = 0; i < pixels; ++i)
         for (int c = 0; c < 3; ++c) {
             const float value = data[i * channels + std::min(c, channels - 1)];
@@ -162,24 +162,58 @@ Texture::Texture(int width, int height, std::vector<float> rgb, std::string name
     for (float value : rgb_) max_value_ = std::max(max_value_, value);
 }
 
-Rgb Texture::texel(long x, long y) const {
-    x %= width_;
-    y %= height_;
-    if (x < 0) x += width_;
-    if (y < 0) y += height_;
+namespace {
+
+// Texel index i wrapped into [0, n).
+long wrap_index(long i, long n, TextureWrap wrap) {
+    switch (wrap) {
+    case TextureWrap::Clamp: return std::clamp(i, 0l, n - 1);
+    case TextureWrap::Mirror: {
+        long m = i % (2 * n);
+        if (m < 0) m += 2 * n;
+        return m < n ? m : 2 * n - 1 - m;
+    }
+    case TextureWrap::Repeat:
+    default: {
+        const long m = i % n;
+        return m < 0 ? m + n : m;
+    }
+    }
+}
+
+// Moves a coordinate by whole periods of the wrap (1 for repeat, 2 for mirror) so that large
+// coordinates keep their precision; clamp only needs it bounded.
+double reduce(double u, TextureWrap wrap) {
+    switch (wrap) {
+    case TextureWrap::Clamp: return std::clamp(u, -1.0, 2.0);
+    case TextureWrap::Mirror: return u - 2 * std::floor(u / 2);
+    case TextureWrap::Repeat:
+    default: return u - std::floor(u);
+    }
+}
+
+} // namespace
+
+Rgb Texture::texel(long x, long y, TextureWrap wrap) const {
+    x = wrap_index(x, width_, wrap);
+    y = wrap_index(y, height_, wrap);
     const float *p = &rgb_[(static_cast<size_t>(y) * width_ + x) * 3];
     return {p[0], p[1], p[2]};
 }
 
-Rgb Texture::lookup(double u, double v) const {
-    if (!std::isfinite(u) || !std::isfinite(v)) return texel(0, 0);
-    // Texel centres sit at half-integer positions; wrap first so huge tiling factors keep precision.
-    const double x = (u - std::floor(u)) * width_ - 0.5, y = (v - std::floor(v)) * height_ - 0.5;
+Rgb Texture::lookup(double u, double v, TextureFilter filter, TextureWrap wrap) const {
+    if (!std::isfinite(u) || !std::isfinite(v)) return texel(0, 0, wrap);
+    u = reduce(u, wrap);
+    v = reduce(v, wrap);
+    if (filter == TextureFilter::Nearest)
+        return texel(static_cast<long>(std::floor(u * width_)), static_cast<long>(std::floor(v * height_)), wrap);
+    // Texel centres sit at half-integer positions.
+    const double x = u * width_ - 0.5, y = v * height_ - 0.5;
     const double fx = std::floor(x), fy = std::floor(y);
     const long x0 = static_cast<long>(fx), y0 = static_cast<long>(fy);
     const double ax = x - fx, ay = y - fy;
-    return texel(x0, y0) * ((1 - ax) * (1 - ay)) + texel(x0 + 1, y0) * (ax * (1 - ay)) +
-           texel(x0, y0 + 1) * ((1 - ax) * ay) + texel(x0 + 1, y0 + 1) * (ax * ay);
+    return texel(x0, y0, wrap) * ((1 - ax) * (1 - ay)) + texel(x0 + 1, y0, wrap) * (ax * (1 - ay)) +
+           texel(x0, y0 + 1, wrap) * ((1 - ax) * ay) + texel(x0 + 1, y0 + 1, wrap) * (ax * ay);
 }
 
 } // namespace ppm

@@ -55,10 +55,10 @@ const std::set<std::string> &renderable(const std::string &tag) {
     static const std::map<std::string, std::set<std::string>> types = {
         {"bsdf",
          {"diffuse", "conductor", "roughconductor", "dielectric", "plastic", "twosided", "thindielectric",
-          "roughdielectric", "roughplastic"}},
+          "roughdielectric", "roughplastic", "blendbsdf", "mask"}},
         {"emitter", {"point", "spot", "area", "constant", "envmap", "directional"}},
         {"shape", {"sphere", "rectangle", "disk", "cylinder", "cube", "obj", "ply", "serialized", "bezier"}},
-        {"texture", {"bitmap"}}};
+        {"texture", {"bitmap", "checkerboard"}}};
     static const std::set<std::string> none;
     const auto found = types.find(tag);
     return found == types.end() ? none : found->second;
@@ -466,15 +466,23 @@ private:
                 const std::string id = substitute(child, source, "id");
                 const auto found = by_id_.find(id);
                 if (found == by_id_.end()) error(child, source, "no object has the id \"" + id + "\"");
-                const std::string role = child.attribute("name") ? std::string(child.attribute("name").value())
-                                                                 : std::string(found->second.node.name());
-                if (std::string(found->second.node.name()) == "bsdf" && role == "bsdf")
-                    out["bsdf"] = located(Json::Value(id), child, source);
-                else
+                std::string role = child.attribute("name") ? std::string(child.attribute("name").value())
+                                                           : std::string(found->second.node.name());
+                if (role == "bsdf" && !child.attribute("name") && out["type"].asString() == "blendbsdf")
+                    role = out.isMember("bsdf_0") ? "bsdf_1" : "bsdf_0";
+                // A BSDF referred to in any role (bsdf, blendbsdf's bsdf_0 and bsdf_1) is the
+                // named material, shared.
+                if (std::string(found->second.node.name()) == "bsdf") {
+                    if (out.isMember(role)) error(child, source, "a second '" + role + "' in the same object");
+                    out[role] = located(Json::Value(id), child, source);
+                } else
                     out[role] = object(found->second.node, *found->second.source, depth + 1);
             } else if (object_tags().count(kind)) {
-                const std::string role =
+                std::string role =
                     kind == "texture" || child.attribute("name") ? required(child, source, "name") : kind;
+                // Mitsuba's blendbsdf takes its two nested BSDFs in order when they have no names.
+                if (kind == "bsdf" && !child.attribute("name") && out["type"].asString() == "blendbsdf")
+                    role = out.isMember("bsdf_0") ? "bsdf_1" : "bsdf_0";
                 if (out.isMember(role)) error(child, source, "a second '" + role + "' in the same object");
                 out[role] = object(child, source, depth + 1);
             } else {
@@ -556,6 +564,12 @@ private:
             for (const char *role : {"bsdf", "brdf_0"})
                 if (value.isMember(role)) return bsdf(value[role]);
             error(value, "bsdf", "a twosided BSDF needs a nested <bsdf>");
+        }
+        if (type == "blendbsdf" || type == "mask") {
+            // Nested BSDFs (elements or references, in their roles) get the same treatment.
+            for (const char *role : {"bsdf", "bsdf_0", "bsdf_1"})
+                if (value.isMember(role)) value[role] = bsdf(value[role]);
+            return value;
         }
         if (!renderable("bsdf").count(type)) {
             if (!options_.lenient) return value; // the builder names the type and what it renders

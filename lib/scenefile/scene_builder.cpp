@@ -25,6 +25,18 @@ bool is_bitmap(const JsonNode &color) {
            color.at("type").string() == "bitmap";
 }
 
+// A texture the generic path reads (ppm_scene_add_texture): any texture object but a bitmap
+// with only the keys of libppm's older form (filename, scale, offset).
+bool is_generic_texture(const JsonNode &color) {
+    if (!color.is_object() || !color.has("type") || !color.at("type").is_string()) return false;
+    const std::string type = color.at("type").string();
+    if (type == "rgb" || type == "spectrum") return false;
+    if (type != "bitmap") return true;
+    for (const std::string &key : color.keys())
+        if (key != "type" && key != "filename" && key != "scale" && key != "offset") return true;
+    return false;
+}
+
 } // namespace
 
 void SceneBuilder::check(const JsonNode &node, ppm_status status) const {
@@ -53,9 +65,13 @@ std::uint32_t SceneBuilder::add_bsdf(const JsonNode &bsdf) {
     bsdf.require_object();
     const std::string type = bsdf.at("type").string();
     std::uint32_t id = 0;
-    if (type != "diffuse" && type != "dielectric" && type != "plastic") {
-        // Every other type (conductor and roughconductor among them: their eta, k and named
-        // materials) as the API's material table reads it (it names unknown types).
+    const char *const color_keys[] = {"reflectance", "specular_reflectance", "diffuse_reflectance"};
+    // Every type but these three goes to the API's material table (conductor and
+    // roughconductor among them: their eta, k and named materials), as does any material whose
+    // colour is a texture other than the plain bitmap form.
+    bool generic = type != "diffuse" && type != "dielectric" && type != "plastic";
+    for (const char *key : color_keys) generic = generic || (bsdf.has(key) && is_generic_texture(bsdf.at(key)));
+    if (generic) {
         const SceneParams params = params_of(bsdf);
         params.check(ppm_scene_add_material(scene_, type.c_str(), params.data(), params.size(), &id));
         return id;

@@ -165,3 +165,25 @@ def test_scene_files_reach_every_registered_type():
     scene["bsdfs"]["shell"]["bsdf"] = "nothing"
     with pytest.raises(libppm.ParseError, match="no bsdf named 'nothing'"):
         libppm.load_dict(scene)
+
+
+def test_checkerboard_through_the_generic_path():
+    """add_texture("checkerboard", ...) feeds a colour like a bitmap; to_uv moves its cells."""
+    color0, color1 = np.array([0.2, 0.4, 0.6]), np.array([0.6, 0.3, 0.1])
+
+    def checkered(du, dv):
+        def build(scene):
+            to_uv = np.eye(4)
+            to_uv[0, 3], to_uv[1, 3] = du, dv
+            texture = scene.add_texture("checkerboard", color0=tuple(color0), color1=tuple(color1), to_uv=to_uv)
+            assert isinstance(texture, libppm.TextureId)
+            return scene.add_material("diffuse", reflectance=texture)
+        return build
+
+    # The centre pixel sees (u, v) = (0.5, 0.5) + (du, dv): color0 where both fractional parts
+    # are > 0.5 or both are not (Mitsuba 3), color1 elsewhere.
+    np.testing.assert_allclose(plane_under_light(checkered(0.25, 0.25)), color0 / math.pi * 2.0, rtol=0.01)
+    np.testing.assert_allclose(plane_under_light(checkered(0.25, 0.75)), color1 / math.pi * 2.0, rtol=0.01)
+    with libppm.Scene() as scene:
+        with pytest.raises(libppm.InvalidArgumentError, match="'color1' must be >= 0"):
+            scene.add_texture("checkerboard", color1=-1.0)
