@@ -28,6 +28,7 @@ const char *const usage_text =
     "  checker.png     512 x 512   8 x 8 checks in two muted colours\n"
     "  wood.png       1024 x 1024  wood planks: growth rings with noise\n"
     "  tiles.png       512 x 512   4 x 4 glazed wall tiles with grout\n"
+    "  sky.exr         512 x 256   a sky with a small sun, linear radiance (an envmap)\n"
     "All are 8-bit sRGB, deterministic and tile seamlessly.\n"
     "options:\n"
     "  -h, --help   this text\n"
@@ -131,6 +132,40 @@ void write_png(const Image &image, const std::string &path) {
     spec.attribute("oiio:ColorSpace", "sRGB");
     if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, bytes.data()) || !out->close())
         throw std::runtime_error(path + ": cannot write: " + out->geterror());
+}
+
+// Linear radiance as a 32-bit float EXR (an environment map).
+void write_exr(const Image &image, const std::string &path) {
+    std::vector<float> values(image.pixels.size() * 3);
+    for (size_t k = 0; k < image.pixels.size(); ++k) {
+        values[3 * k + 0] = static_cast<float>(image.pixels[k].r);
+        values[3 * k + 1] = static_cast<float>(image.pixels[k].g);
+        values[3 * k + 2] = static_cast<float>(image.pixels[k].b);
+    }
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out) throw std::runtime_error(path + ": cannot create an image writer: " + OIIO::geterror());
+    OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::FLOAT);
+    if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, values.data()) || !out->close())
+        throw std::runtime_error(path + ": cannot write: " + out->geterror());
+}
+
+// ---- sky -------------------------------------------------------------------------------------
+//
+// A latitude-longitude environment in Mitsuba's envmap layout (the top row looks along +y,
+// u = 0 along -z): a blue sky brightening towards the horizon, a warm grey ground, and a small
+// sun 35 degrees high whose 6-degree disc carries about half of the light, so that shadows are
+// clear and rough metal shows a highlight.
+Rgb sky(double x, double y, int width, int height) {
+    const double pi = 3.14159265358979323846;
+    const double phi = 2 * pi * x / width, theta = pi * y / height;
+    const double dx = std::sin(phi) * std::sin(theta), dy = std::cos(theta), dz = -std::cos(phi) * std::sin(theta);
+    const double sun_elevation = 35 * pi / 180, sun_azimuth = 0.7;
+    const double sx = std::sin(sun_azimuth) * std::cos(sun_elevation), sy = std::sin(sun_elevation),
+                 sz = -std::cos(sun_azimuth) * std::cos(sun_elevation);
+    if (dx * sx + dy * sy + dz * sz > std::cos(6 * pi / 180)) return {60, 54, 45};
+    if (dy < 0) return {0.25, 0.22, 0.19};
+    const double horizon = std::pow(1 - dy, 4);
+    return {0.25 + 0.6 * horizon, 0.45 + 0.5 * horizon, 0.95 + 0.2 * horizon};
 }
 
 // ---- porcelain -------------------------------------------------------------------------------
@@ -374,6 +409,9 @@ int main(int argc, char **argv) {
             write_png(render(t.width, t.height, 3, t.shade), path);
             std::printf("wrote %s (%d x %d, 8-bit sRGB)\n", path.c_str(), t.width, t.height);
         }
+        const std::string sky_path = (std::filesystem::path(outdir) / "sky.exr").string();
+        write_exr(render(512, 256, 3, [](double x, double y) { return sky(x, y, 512, 256); }), sky_path);
+        std::printf("wrote %s (512 x 256, linear float)\n", sky_path.c_str());
     } catch (const std::exception &e) {
         std::fprintf(stderr, "ppm-textures: %s\n", e.what());
         return 2;
