@@ -6,6 +6,7 @@
 
 #include "test_support.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -306,6 +307,51 @@ static void test_xml_file_names_are_relative_to_the_scene(void **state) {
     ppm_scene_file_release(file);
 }
 
+/* The hit of a ray straight down the z axis onto the scene of an XML file. */
+static ppm_hit hit_from_above(fixture *f, const char *path) {
+    ppm_scene_file file = NULL;
+    if (ppm_scene_file_load(f->context, path, &file) != PPM_OK) fail_msg("%s", ppm_last_error_message());
+    ppm_scene scene = NULL;
+    assert_int_equal(ppm_scene_file_get_scene(file, &scene), PPM_OK);
+    const ppm_ray ray = {{0.2, 0.2, 5}, 0, {0, 0, -1}, INFINITY};
+    ppm_hit hit;
+    assert_int_equal(ppm_scene_intersect(scene, &ray, 1, &hit), PPM_OK);
+    ppm_scene_release(scene);
+    ppm_scene_file_release(file);
+    assert_true(hit.t < INFINITY);
+    return hit;
+}
+
+/* Mitsuba's face_normals drops a mesh's vertex normals; a mirroring to_world keeps a
+ * rectangle's normal where Mitsuba puts it (the normal transform of +z). */
+static void test_face_normals_and_mirrored_rectangles(void **state) {
+    fixture *f = *state;
+    write_file(f, "tilted.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nvn 0.6 0 0.8\nf 1//1 2//1 3//1\n");
+    const char *smooth = "<scene version=\"3.0.0\"><shape type=\"obj\">"
+                         "<string name=\"filename\" value=\"tilted.obj\"/></shape></scene>\n";
+    const char *flat = "<scene version=\"3.0.0\"><shape type=\"obj\">"
+                       "<string name=\"filename\" value=\"tilted.obj\"/>"
+                       "<boolean name=\"face_normals\" value=\"true\"/></shape></scene>\n";
+    ppm_hit hit = hit_from_above(f, write_file(f, "smooth.xml", smooth));
+    assert_true(fabs(hit.ns[0] - 0.6) < 1e-9 && fabs(hit.ns[2] - 0.8) < 1e-9);
+    hit = hit_from_above(f, write_file(f, "flat.xml", flat));
+    assert_true(fabs(hit.ns[0]) < 1e-9 && fabs(fabs(hit.ns[2]) - 1) < 1e-9);
+
+    const char *mirrored = "<scene version=\"3.0.0\"><shape type=\"rectangle\">"
+                           "<transform name=\"to_world\"><scale x=\"-1\"/></transform></shape></scene>\n";
+    hit = hit_from_above(f, write_file(f, "mirrored.xml", mirrored));
+    assert_true(fabs(hit.ng[2] - 1) < 1e-12); /* +z, as without the mirror */
+
+    ppm_scene scene = NULL;
+    assert_int_equal(ppm_scene_create(f->context, &scene), PPM_OK);
+    const double c[3] = {0, 0, 0};
+    uint32_t sphere = 0;
+    assert_int_equal(ppm_scene_add_sphere(scene, c, 1, &sphere), PPM_OK);
+    assert_int_equal(ppm_scene_set_mesh_face_normals(scene, sphere, 1), PPM_ERROR_INVALID_ARGUMENT);
+    assert_message_has("face_normals applies to triangle meshes");
+    ppm_scene_release(scene);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_xml_is_chosen_by_extension_or_content, setup, teardown),
@@ -316,6 +362,7 @@ int main(void) {
         cmocka_unit_test_setup_teardown(test_bad_options_are_refused, setup, teardown),
         cmocka_unit_test_setup_teardown(test_misspellings_get_a_suggestion, setup, teardown),
         cmocka_unit_test_setup_teardown(test_xml_file_names_are_relative_to_the_scene, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_face_normals_and_mirrored_rectangles, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -220,6 +220,11 @@ PPM_API ppm_status ppm_scene_add_cylinder(ppm_scene scene, const double p0[3], c
  * Errors: INVALID_ARGUMENT (a sphere or patch set: not supported). */
 PPM_API ppm_status ppm_scene_set_geometry_flip_normals(ppm_scene scene, uint32_t geom_id, int flip);
 
+/* Mitsuba's `face_normals` on a triangle mesh: shades it with its flat face normals, dropping
+ * the vertex normals it was loaded or made with (for good: a later call with 0 does not bring
+ * them back). Takes effect at the next commit. Errors: INVALID_ARGUMENT (not a mesh). */
+PPM_API ppm_status ppm_scene_set_mesh_face_normals(ppm_scene scene, uint32_t geom_id, int face_normals);
+
 /* Parallelogram (a rectangle when the edges are orthogonal) {origin + s*edge_u + t*edge_v :
  * s, t in [0, 1]}; hit (u, v) = (s, t); geometric normal edge_u x edge_v. Two-sided. */
 PPM_API ppm_status ppm_scene_add_quad(ppm_scene scene, const double origin[3], const double edge_u[3],

@@ -301,6 +301,20 @@ ppm_status ppm_scene_set_geometry_flip_normals(ppm_scene scene, uint32_t geom_id
     });
 }
 
+ppm_status ppm_scene_set_mesh_face_normals(ppm_scene scene, uint32_t geom_id, int face_normals) {
+    return scene_call(scene, [&](ppm::Scene &s) {
+        ppm::Geometry &g = s.geometry(geom_id);
+        auto *mesh = dynamic_cast<ppm::MeshGeometry *>(&g);
+        if (!mesh)
+            invalid_argument("geometry " + std::to_string(geom_id) + " is a " + g.kind() +
+                             "; face_normals applies to triangle meshes");
+        if (face_normals && mesh->has_vertex_normals()) {
+            mesh->drop_vertex_normals();
+            s.mark_modified();
+        }
+    });
+}
+
 ppm_status ppm_scene_add_quad(ppm_scene scene, const double origin[3], const double edge_u[3], const double edge_v[3],
                               uint32_t *out_geom_id) {
     return add_geometry(scene, out_geom_id, [&] {

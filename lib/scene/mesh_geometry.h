@@ -25,6 +25,10 @@ public:
     // Interpolated vertex uvs when the mesh has them, else the barycentric (u, v).
     void texture_coordinates(const ppm_hit &hit, double *s, double *t) const override;
 
+    bool has_vertex_normals() const { return !source_.normals.empty(); }
+    // Flat shading from here on (Mitsuba's face_normals): the next prepare() has no normals.
+    void drop_vertex_normals() { source_.normals.clear(); }
+
     const MeshData &world() const { return *world_; }
     // The world-space data, shared with whoever keeps it (a mesh light) without a copy; a
     // later commit makes a new one and leaves this one to its holders.

@@ -244,6 +244,9 @@ void SceneBuilder::add_shape(const JsonNode &shape) {
                                     v = to_array(to_world.vector(edge_v));
         check(shape, ppm_scene_add_quad(scene_, o.data(), u.data(), v.data(), &geom));
         transform_geometry = false;
+        // As for the disk below: Mitsuba's rectangle normal is to_world's inverse transpose
+        // applied to +z, reversed from edge_u x edge_v by a mirroring to_world.
+        mirrored_normal = type == "rectangle" && to_world.determinant() < 0;
     } else if (type == "disk") {
         // Mitsuba's disk: the unit disk at z = 0 with normal +z, placed by to_world.
         shape.allow_only({"type", "bsdf", "emitter", "to_world", "flip_normals"});
@@ -288,17 +291,22 @@ void SceneBuilder::add_shape(const JsonNode &shape) {
         check(shape, ppm_scene_add_triangle_mesh(scene_, positions.data(), cube.positions.size(), cube.indices.data(),
                                                  cube.indices.size() / 3, normals.data(), cube.uvs.data(), &geom));
     } else if (type == "obj" || type == "ply") {
-        shape.allow_only({"type", "bsdf", "emitter", "to_world", "flip_normals", "filename"});
+        shape.allow_only({"type", "bsdf", "emitter", "to_world", "flip_normals", "face_normals", "filename"});
         const JsonNode filename = shape.at("filename");
         const std::string path = existing_file(filename);
         check(filename, type == "obj" ? ppm_scene_load_obj(scene_, path.c_str(), &geom)
                                       : ppm_scene_load_ply(scene_, path.c_str(), &geom));
+        if (shape.has("face_normals") && shape.at("face_normals").boolean())
+            check(shape.at("face_normals"), ppm_scene_set_mesh_face_normals(scene_, geom, 1));
     } else if (type == "serialized") {
-        shape.allow_only({"type", "bsdf", "emitter", "to_world", "flip_normals", "filename", "shape_index"});
+        shape.allow_only(
+            {"type", "bsdf", "emitter", "to_world", "flip_normals", "face_normals", "filename", "shape_index"});
         const JsonNode filename = shape.at("filename");
         const std::int64_t index = shape.has("shape_index") ? shape.at("shape_index").integer(0, 0xFFFFFFFF) : 0;
         check(filename, ppm_scene_load_serialized(scene_, existing_file(filename).c_str(),
                                                   static_cast<std::uint32_t>(index), &geom));
+        if (shape.has("face_normals") && shape.at("face_normals").boolean())
+            check(shape.at("face_normals"), ppm_scene_set_mesh_face_normals(scene_, geom, 1));
     } else {
         shape.allow_only({"type", "bsdf", "emitter", "to_world", "filename", "patches", "uv_rects"});
         if (shape.has("filename") == shape.has("patches"))

@@ -188,6 +188,11 @@ class Scene(Handle):
         geometry emits on the other side (meshes, quads, disks, cylinders)."""
         self._core_object.set_geometry_flip_normals(uint32(geom_id, "geom_id"), bool(flip))
 
+    def set_face_normals(self, geom_id: int, face_normals: bool = True) -> None:
+        """Shades a triangle mesh with its flat face normals (Mitsuba's ``face_normals``),
+        dropping its vertex normals for good; takes effect at the next :meth:`commit`."""
+        self._core_object.set_mesh_face_normals(uint32(geom_id, "geom_id"), bool(face_normals))
+
     def add_mesh(self, positions: ArrayLike, indices: ArrayLike,
                  normals: Optional[ArrayLike] = None, uvs: Optional[ArrayLike] = None,
                  material: Optional[int] = None) -> int:

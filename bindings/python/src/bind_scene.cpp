@@ -106,6 +106,9 @@ void bind_scene(nb::module_ &m) {
     cls.def("set_geometry_flip_normals", [](Scene &s, uint32_t geom_id, bool flip) {
         check(ppm_scene_set_geometry_flip_normals(s.get(), geom_id, flip ? 1 : 0));
     });
+    cls.def("set_mesh_face_normals", [](Scene &s, uint32_t geom_id, bool face_normals) {
+        check(ppm_scene_set_mesh_face_normals(s.get(), geom_id, face_normals ? 1 : 0));
+    });
     cls.def(
         "add_triangle_mesh",
         [](Scene &s, const Doubles &positions, const Indices &indices, std::optional<Doubles> normals,

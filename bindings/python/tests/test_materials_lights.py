@@ -187,3 +187,29 @@ def test_checkerboard_through_the_generic_path():
     with libppm.Scene() as scene:
         with pytest.raises(libppm.InvalidArgumentError, match="'color1' must be >= 0"):
             scene.add_texture("checkerboard", color1=-1.0)
+
+
+def test_lights_at_infinity_and_face_normals():
+    """A diffuse sphere under a constant environment L shows rho * L (it sees only the sky);
+    face normals flatten a mesh's shading normals."""
+    with libppm.Scene() as scene:
+        grey = scene.add_material("diffuse", reflectance=0.5)
+        scene.add_sphere((0, 0, 0), 1.0, material=grey)
+        scene.add_light("constant", radiance=2.0)
+        scene.commit()
+        # Every pixel sees the sphere; one light sample per pixel and pass: 5184 in all.
+        camera = libppm.Camera(origin=(0, 0, 4), target=(0, 0, 0), fov=10, width=9, height=9)
+        with libppm.Renderer(scene, camera, photons_per_pass=20000) as r:
+            image = r.render(64)
+    np.testing.assert_allclose(image.mean(axis=(0, 1)), 1.0, rtol=0.04)
+    with libppm.Scene() as scene:
+        positions = [(-1, -1, 0), (1, -1, 0), (0, 1, 0)]
+        mesh = scene.add_mesh(positions, [(0, 1, 2)], normals=[(0.6, 0, 0.8)] * 3)
+        scene.set_face_normals(mesh)
+        scene.commit()
+        hit = scene.intersect((0.2, 0.2, 5), (0, 0, -1))
+        np.testing.assert_allclose(np.abs(hit.ns), [0, 0, 1], atol=1e-9)
+    with libppm.Scene() as scene:
+        scene.add_sphere((0, 0, 0), 1.0)
+        with pytest.raises(libppm.InvalidArgumentError, match="face_normals"):
+            scene.set_face_normals(0)
