@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 
 namespace ppm::api {
 
@@ -29,9 +30,14 @@ Params::Params(std::string what, const ppm_param *params, std::size_t count)
     if (count > 0 && !params) invalid_argument(what_ + ": params is NULL but param_count is " + std::to_string(count));
     for (std::size_t i = 0; i < count; ++i) {
         if (!params[i].name) invalid_argument(what_ + ": parameter " + std::to_string(i) + " has no name (NULL)");
+        // A caller's bad value is not one of the enumerators, and loading it as the enum type
+        // would be undefined in C++: read its bytes as the underlying integer.
+        std::underlying_type_t<ppm_param_type> raw = 0;
+        std::memcpy(&raw, &params[i].type, sizeof raw);
+        if (raw != PPM_PARAM_NUMBERS && raw != PPM_PARAM_STRING && raw != PPM_PARAM_MATERIAL &&
+            raw != PPM_PARAM_TEXTURE)
+            fail(params[i].name, "has an unknown type " + std::to_string(static_cast<long long>(raw)));
         const ppm_param_type t = params[i].type;
-        if (t != PPM_PARAM_NUMBERS && t != PPM_PARAM_STRING && t != PPM_PARAM_MATERIAL && t != PPM_PARAM_TEXTURE)
-            fail(params[i].name, "has an unknown type " + std::to_string(static_cast<int>(t)));
         if (t == PPM_PARAM_NUMBERS && params[i].count > 0 && !params[i].numbers)
             fail(params[i].name, "has numbers NULL and count " + std::to_string(params[i].count));
         if (t == PPM_PARAM_STRING && !params[i].string) fail(params[i].name, "is a string, but NULL");
