@@ -637,7 +637,13 @@ PPM_API void ppm_renderer_release(ppm_renderer renderer);
  *   "mode"                  string "sppm" (stochastic PPM, new eye pass each pass), "ppm"
  *                           (classic: hit points fixed by the first pass) or "pppm"
  *                           (probabilistic PPM: each pass's radius depends on its index
- *                           only, so passes render apart and merge; see partial renders)
+ *                           only, so passes render apart and merge; see partial renders),
+ *                           "vcm" (vertex connection and merging: bidirectional path
+ *                           tracing and photon merging under multiple importance
+ *                           sampling, one light and one camera subpath per pixel and
+ *                           pass, pinhole cameras only), "bpt" (its connections only) or
+ *                           "vm" (its merging only); vcm, bpt and vm are pass-independent
+ *                           like pppm and do not use photons_per_pass or direct_lighting
  *                                                                              default "sppm"
  *   "photons_per_pass"      int    1 .. 2^31                                  default 200000
  *   "alpha"                 double radius reduction in (0, 1]                 default 2/3
@@ -652,8 +658,8 @@ PPM_API void ppm_renderer_release(ppm_renderer renderer);
  *                                                                              default 0.2
  * Typed settings as described at the top of this header. mode, seed, direct_lighting,
  * glossy_gather_alpha and the initial radius settings are fixed after the first pass
- * (INVALID_OPERATION), in "pppm"
- * mode photons_per_pass, alpha and max_depth too; unknown
+ * (INVALID_OPERATION), in the pass-independent modes ("pppm", "vcm", "bpt", "vm")
+ * photons_per_pass, alpha and max_depth too; unknown
  * keys, wrong types and values out of range are INVALID_ARGUMENT. Read-only ints: "passes",
  * "photons_emitted", "width", "height", "lights" (the light sources photons leave: point,
  * spot and area lights; 0 renders black); read-only doubles: "last_eye_pass_seconds",
@@ -711,24 +717,25 @@ PPM_API ppm_status ppm_renderer_get_layer(ppm_renderer renderer, const char *lay
 PPM_API ppm_status ppm_renderer_save_checkpoint(ppm_renderer renderer, const char *path);
 PPM_API ppm_status ppm_renderer_load_checkpoint(ppm_renderer renderer, const char *path);
 
-/* Partial renders: passes of one render in "pppm" mode, rendered by any number of processes
- * in any order, and merged exactly. In "pppm" mode pass i uses the gather radius
- * r_i^2 = r_0^2 prod_{k=1..i} (k - 1 + alpha) / k (Knaus and Zwicker 2011) and random numbers
+/* Partial renders: passes of one render in a pass-independent mode ("pppm", "vcm", "bpt",
+ * "vm"), rendered by any number of processes in any order, and merged exactly. In "pppm" mode
+ * pass i uses the gather radius r_i^2 = r_0^2 prod_{k=1..i} (k - 1 + alpha) / k (Knaus and
+ * Zwicker 2011), in the others the merge radius r_i = r_0 (i + 1)^((alpha - 1) / 2), and random numbers
  * drawn from (seed, i) only; the image is the mean of the passes' estimates, each rounded
  * once to a multiple of 2^-40 and summed as 128-bit integers. So merging the partials of
  * passes 0..N-1 gives the same bits as one process rendering N passes, whatever the split,
  * the order and the thread counts. A partial records the render's identity (image size,
  * camera, scene, mode, seed, direct_lighting, initial radius, alpha, photons_per_pass,
  * max_depth); partials of different renders or with a pass in common do not merge.
- * Checkpoints of a "pppm" render are partials, so ppm_renderer_load_checkpoint takes them. */
+ * Checkpoints of a pass-independent render are partials, so ppm_renderer_load_checkpoint takes them. */
 typedef struct ppm_partial_t *ppm_partial;
 
-/* Renders pass `pass_index` of a "pppm" render (ppm_render_pass renders the lowest index not
+/* Renders pass `pass_index` of a pass-independent render (ppm_render_pass renders the lowest index not
  * yet rendered). Errors as ppm_render_pass, and INVALID_OPERATION (another mode, or the pass
  * is rendered already), INVALID_ARGUMENT (NULL, pass_index >= 2^32). */
 PPM_API ppm_status ppm_render_pass_index(ppm_renderer renderer, uint64_t pass_index);
 /* The renderer's passes so far as a new partial (the caller owns the one reference), or
- * saved to `path` atomically. Errors: INVALID_OPERATION (not "pppm", or no pass completed),
+ * saved to `path` atomically. Errors: INVALID_OPERATION (not pass-independent, or no pass completed),
  * IO (save), INVALID_ARGUMENT (NULL). Thread safe, also during a pass (the state after the
  * last completed pass). */
 PPM_API ppm_status ppm_renderer_get_partial(ppm_renderer renderer, ppm_partial *out_partial);
@@ -736,7 +743,7 @@ PPM_API ppm_status ppm_renderer_save_partial(ppm_renderer renderer, const char *
 /* Adds a partial's passes to the renderer's (e.g. to go on rendering other passes, or to read
  * the merged image through ppm_renderer_get_layer). Errors: INVALID_ARGUMENT (NULL, a partial
  * of another render: the message names what differs; a pass the renderer holds already: the
- * message names it), INVALID_OPERATION (not "pppm", or during a pass). */
+ * message names it), INVALID_OPERATION (not pass-independent, or during a pass). */
 PPM_API ppm_status ppm_renderer_merge_partial(ppm_renderer renderer, ppm_partial partial);
 
 /* A partial from a file written by ppm_renderer_save_partial / ppm_partial_save, or from

@@ -83,6 +83,7 @@ public:
     int width() const { return width_; }
     int height() const { return height_; }
     bool is_thin_lens() const { return aperture_radius_ > 0; }
+    double near_clip() const { return near_clip_; }
     const Vec3 &position() const { return origin_; }
     const Vec3 &forward() const { return forward_; }
     const Vec3 &left() const { return left_; }

@@ -129,7 +129,7 @@ std::uint64_t Renderer::scene_hash() const {
 
 void Renderer::save_checkpoint(const std::string &path) const {
     // A pass-independent render's checkpoint is its partial render (none before a pass).
-    if (settings_.mode == RenderSettings::Mode::Pppm && started()) {
+    if (RenderSettings::is_pass_independent(settings_.mode) && started()) {
         Owned<Partial>(make_partial())->save(path);
         return;
     }
@@ -165,7 +165,7 @@ void Renderer::load_checkpoint(const std::string &path) {
     if (started()) fail(PPM_ERROR_INVALID_OPERATION, "a checkpoint can only be loaded before the first pass");
 
     const std::string bytes = read_text_file(path);
-    if (settings_.mode == RenderSettings::Mode::Pppm && bytes.compare(0, 8, "PPMPART", 8) == 0)
+    if (RenderSettings::is_pass_independent(settings_.mode) && bytes.compare(0, 8, "PPMPART", 8) == 0)
         return load_partial_checkpoint(path, bytes);
     ByteReader r(path, "checkpoint", bytes.data(), bytes.size());
     char magic[sizeof kMagic];
@@ -203,7 +203,10 @@ void Renderer::load_checkpoint(const std::string &path) {
         differs("image size", std::to_string(width_) + " x " + std::to_string(height_),
                 std::to_string(width()) + " x " + std::to_string(height()));
     if (mode != static_cast<std::uint32_t>(settings_.mode))
-        differs("mode", mode <= 2 ? RenderSettings::mode_name(static_cast<RenderSettings::Mode>(mode)) : "unknown",
+        differs("mode",
+                mode <= static_cast<std::uint32_t>(RenderSettings::Mode::Vm)
+                    ? RenderSettings::mode_name(static_cast<RenderSettings::Mode>(mode))
+                    : "unknown",
                 settings_.get_string("mode"));
     if (direct != static_cast<std::uint32_t>(settings_.direct_lighting))
         differs("direct_lighting", std::to_string(direct), std::to_string(settings_.direct_lighting));

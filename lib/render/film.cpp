@@ -92,6 +92,19 @@ void Film::commit_independent_pass(Context &context, DensityEstimator &estimator
     passes_.store(sums_.passes().count());
 }
 
+void Film::commit_estimated_pass(std::uint64_t pass, const PassEstimate &estimate) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ensure_sums();
+    std::uint64_t rejected = 0;
+    for (std::uint32_t p = 0; p < pixel_count(); ++p)
+        rejected += sums_.add(p, estimate.radiance[p], estimate.radius, estimate.merges[p]);
+    sums_.add_rejected(rejected);
+    sums_.passes().insert(pass);
+    sums_.add_photons_emitted(estimate.light_paths);
+    photons_emitted_ += estimate.light_paths;
+    passes_.store(sums_.passes().count());
+}
+
 void Film::merge_sums(const PassSums &other) {
     std::lock_guard<std::mutex> lock(mutex_);
     ensure_sums();

@@ -15,6 +15,7 @@
 
 #include "photon/sppm_statistics.h"
 #include "render/density_estimator.h"
+#include "render/pass_estimate.h"
 #include "render/pass_sums.h"
 
 #include <atomic>
@@ -62,6 +63,8 @@ public:
     // pixel's sums. The pass must not be in the film yet.
     void commit_independent_pass(Context &context, DensityEstimator &estimator, std::uint64_t pass,
                                  std::uint64_t photons);
+    // Ends pass `pass` of a pass-independent film from an estimate made whole by the mode.
+    void commit_estimated_pass(std::uint64_t pass, const PassEstimate &estimate);
     // f(sums) under the readers' lock (pass-independent films).
     template <class F> void with_sums(F &&f) const {
         std::lock_guard<std::mutex> lock(mutex_);

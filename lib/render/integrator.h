@@ -11,6 +11,7 @@
 #include "render/camera.h"
 #include "render/density_estimator.h"
 #include "render/film.h"
+#include "render/pass_estimate.h"
 #include "render/render_scene.h"
 #include "render/render_settings.h"
 
@@ -18,6 +19,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <vector>
 
 namespace ppm {
 
@@ -53,6 +55,14 @@ public:
     // Whether each pass stands alone (its radii depend on its index only): the film then sums
     // pass estimates (Film::commit_independent_pass) instead of carrying statistics over.
     virtual bool pass_independent() const { return false; }
+
+    // Whether this mode makes a pass's whole estimate itself (the bidirectional modes,
+    // vcm_integrator.h), with estimate_pass instead of eye_pass and the renderer's photon pass.
+    // Such modes are pass-independent.
+    virtual bool estimates_whole_pass() const { return false; }
+    // Pass `pass`'s estimate of every pixel. Throws ppm::Error; on cancel it may return early
+    // with any estimate, which the renderer then discards.
+    virtual void estimate_pass(const PassInputs &in, std::uint32_t pass, PassEstimate &out);
 };
 
 // The integrator of a mode (integrator_registry.cpp).

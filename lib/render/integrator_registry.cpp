@@ -7,6 +7,7 @@
 #include "render/ppm_integrator.h"
 #include "render/pppm_integrator.h"
 #include "render/sppm_integrator.h"
+#include "render/vcm_integrator.h"
 
 namespace ppm {
 
@@ -18,14 +19,24 @@ struct Registration {
 };
 
 template <class T> std::unique_ptr<Integrator> make() { return std::make_unique<T>(); }
+template <VcmIntegrator::Techniques T> std::unique_ptr<Integrator> make_vcm() {
+    return std::make_unique<VcmIntegrator>(T);
+}
 
 constexpr Registration kIntegrators[] = {
     {RenderSettings::Mode::Sppm, make<SppmIntegrator>},
     {RenderSettings::Mode::Ppm, make<PpmIntegrator>},
     {RenderSettings::Mode::Pppm, make<PppmIntegrator>},
+    {RenderSettings::Mode::Vcm, make_vcm<VcmIntegrator::Techniques::All>},
+    {RenderSettings::Mode::Bpt, make_vcm<VcmIntegrator::Techniques::ConnectOnly>},
+    {RenderSettings::Mode::Vm, make_vcm<VcmIntegrator::Techniques::MergeOnly>},
 };
 
 } // namespace
+
+void Integrator::estimate_pass(const PassInputs &, std::uint32_t, PassEstimate &) {
+    fail(PPM_ERROR_INVALID_OPERATION, "this mode estimates a pass from camera paths and photons, not by itself");
+}
 
 std::unique_ptr<Integrator> make_integrator(RenderSettings::Mode mode) {
     for (const Registration &r : kIntegrators)

@@ -28,13 +28,6 @@ void check_point(const Vec3 &p, const char *name) {
     if (!is_finite(p)) invalid_argument(std::string("light ") + name + " has a NaN or infinite coordinate");
 }
 
-Vec3 uniform_sphere(double u1, double u2) {
-    const double z = 1.0 - 2.0 * u1, r = std::sqrt(std::max(0.0, 1.0 - z * z));
-    double sin_phi, cos_phi;
-    sin_cos_2pi(u2, &sin_phi, &cos_phi);
-    return {r * cos_phi, r * sin_phi, z};
-}
-
 // Direction in a cone of half-angle acos(1 - one_minus_cos_max) around +z, uniform in solid angle.
 Vec3 uniform_cone(double u1, double u2, double one_minus_cos_max) {
     const double cos_theta = 1.0 - u1 * one_minus_cos_max;
@@ -292,6 +285,10 @@ void Light::sample_area(double u1, double u2, Vec3 *p, Vec3 *n, Vec3 *ng) const 
         *n = *ng = radial * normal_sign_;
         return;
     }
+    case Type::Sphere:
+        *n = *ng = uniform_sphere(u1, u2);
+        *p = position_ + *n * radius_;
+        return;
     case Type::Mesh: {
         const MeshData &m = *table_->mesh;
         const std::vector<double> &cdf = table_->cdf;
@@ -346,6 +343,7 @@ EmittedPhoton Light::emit(double u1, double u2, double u3, double u4) const {
         const Vec3 local = square_to_cosine_hemisphere(u3, u4);
         photon.direction = frame_.to_world(local);
         photon.origin = position_ + edge_u_ * u1 + edge_v_ * u2 + frame_.n * surface_offset_;
+        photon.normal = frame_.n;
         photon.flux = power_; // L cos / (pdf_area * cos / pi) = pi L A
         break;
     }
@@ -353,6 +351,7 @@ EmittedPhoton Light::emit(double u1, double u2, double u3, double u4) const {
         const Vec3 n = uniform_sphere(u1, u2);
         photon.direction = Frame::from_normal(n).to_world(square_to_cosine_hemisphere(u3, u4));
         photon.origin = position_ + n * (radius_ + surface_offset_);
+        photon.normal = n;
         photon.flux = power_;
         break;
     }
@@ -366,6 +365,7 @@ EmittedPhoton Light::emit(double u1, double u2, double u3, double u4) const {
         // side the photon leaves to.
         photon.direction = Frame::from_normal(n).to_world(square_to_cosine_hemisphere(u3, u4));
         photon.origin = p + ng * (dot(photon.direction, ng) >= 0 ? surface_offset_ : -surface_offset_);
+        photon.normal = n;
         photon.flux = power_;
         break;
     }

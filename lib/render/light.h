@@ -40,6 +40,30 @@ struct EmittedPhoton {
     Vec3 origin;
     Vec3 direction; // unit
     Rgb flux;       // power carried, as if this light emitted only this one photon
+    Vec3 normal;    // area lights: the emitting normal at the origin (else zero)
+};
+
+// The densities a bidirectional estimator (vcm_integrator) weighs its techniques with, for a
+// point on a light and a direction light leaves it along (Georgiev et al. 2012, and SmallVCM's
+// Emit/Illuminate/GetRadiance).
+struct EmissionDensities {
+    // Density of emit() producing this origin and direction: the origin's in area measure (1
+    // for a point light; 1 / (pi R^2) on the disc of a light at infinity) times the
+    // direction's in solid angle (1 for a directional light).
+    double emission = 0;
+    // Density of illuminate() picking this point: area measure on an area light, solid angle
+    // for an environment light, 1 for a delta light.
+    double direct = 0;
+    double cos_light = 1; // between the emitting normal and the direction (1 without a normal)
+};
+
+// One sample of the light arriving at a point, with its densities (illuminate()).
+struct LightIllumination {
+    Vec3 direction;              // unit, from the point towards the light
+    double distance = 0;         // to the sampled point (infinite for lights at infinity)
+    Rgb radiance;                // arriving radiance (point and spot lights: intensity); 0 if none
+    double direct_pdf_w = 0;     // solid-angle density of `direction` (point and spot lights: dist^2)
+    EmissionDensities densities; // of the light leaving the sampled point towards the receiver
 };
 
 // One sample of the light arriving at a point.
@@ -108,6 +132,17 @@ public:
     // Light at `p` from one point on the light picked by (u1, u2); radiance_over_pdf is zero
     // when the sample sees the light's back or p is inside a spherical light.
     DirectLightSample sample_direct(const Vec3 &p, double u1, double u2) const;
+
+    // The bidirectional estimator's questions (light_densities.cpp). Delta lights (point, spot,
+    // directional) cannot be hit by a ray; lights at infinity are not finite.
+    bool is_delta() const { return type_ == Type::Point || type_ == Type::Spot || type_ == Type::Directional; }
+    // Densities of light leaving a point of this light with emitting normal `normal` (as
+    // EmittedPhoton::normal, or a hit's shading normal) along `direction` (unit, away from the
+    // light; for lights at infinity, the direction their light travels).
+    EmissionDensities emission_densities(const Vec3 &normal, const Vec3 &direction) const;
+    // Light at `p` from one point picked by (u1, u2): uniform in area on every area light (a
+    // sphere too, unlike sample_direct), so that emission_densities().direct is its density.
+    LightIllumination illuminate(const Vec3 &p, double u1, double u2) const;
 
     // Distance photons start off an area light's surface (the scene's hit tolerance).
     void set_surface_offset(double offset) { surface_offset_ = offset; }

@@ -162,8 +162,9 @@ Partial *Partial::parse(const char *data, std::size_t size, const std::string &o
         fail(PPM_ERROR_PARSE, origin + ": corrupt or truncated partial render (the checksum does not match)");
 
     const RenderIdentity identity = get_identity(r);
-    if (identity.mode != static_cast<std::uint32_t>(RenderSettings::Mode::Pppm))
-        corrupt(origin, "mode " + std::to_string(identity.mode) + " is not the pass-independent mode");
+    if (identity.mode > static_cast<std::uint32_t>(RenderSettings::Mode::Vm) ||
+        !RenderSettings::is_pass_independent(static_cast<RenderSettings::Mode>(identity.mode)))
+        corrupt(origin, "mode " + std::to_string(identity.mode) + " is not a pass-independent mode");
     const std::uint64_t pixels = std::uint64_t(identity.width) * identity.height;
     if (identity.width == 0 || identity.height == 0 || pixels > kMaxPixels)
         corrupt(origin, "image size " + std::to_string(identity.width) + " x " + std::to_string(identity.height));

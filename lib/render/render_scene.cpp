@@ -70,8 +70,11 @@ RenderScene::RenderScene(const Scene &scene, const SceneShading &shading) : scen
                              std::to_string(shading.materials().size()) + " materials");
         }
         geometry_emission_.push_back(shading.emission(id));
-        if (!geometry_emission_.back().is_black())
+        geometry_light_.push_back(-1);
+        if (!geometry_emission_.back().is_black()) {
+            geometry_light_.back() = static_cast<long>(lights_.size());
             lights_.push_back(area_light(g, id, geometry_emission_.back(), offset));
+        }
     }
     // Lights at infinity aim their photons at the committed scene's bounding sphere, a little
     // enlarged (as Mitsuba's set_scene) so that they start outside every surface.

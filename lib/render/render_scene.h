@@ -44,6 +44,14 @@ public:
     // Index of the light a photon starts from, chosen in proportion to mean power, and that
     // probability. Requires total_power() to be non-zero.
     size_t pick_light(double u, double *probability) const;
+    // The probability pick_light picks light `index` with.
+    double light_probability(size_t index) const {
+        return light_cdf_[index] - (index > 0 ? light_cdf_[index - 1] : 0.0);
+    }
+    // Index into lights() of the area light a geometry is, or -1 when it emits nothing.
+    long light_of_geometry(uint32_t geom_id) const { return geometry_light_[geom_id]; }
+    // Indices into lights() of the environment lights (constant, envmap).
+    const std::vector<size_t> &environment_lights() const { return environment_lights_; }
 
     // Closest hit along ray, described; false on a miss. `leaving`: the hit the ray was
     // spawned from, if any (RayHints::leaving); it may be &out.hit. `rng`: the path's
@@ -80,6 +88,7 @@ private:
     std::vector<Material> geometry_materials_; // one per geometry
     std::vector<Material> materials_;          // the scene's: the components of blends and masks
     std::vector<Rgb> geometry_emission_;       // one per geometry
+    std::vector<long> geometry_light_;         // one per geometry: index into lights_, or -1
     std::vector<Light> lights_;
     std::vector<size_t> environment_lights_; // indices into lights_
     std::vector<double> light_cdf_;          // cumulative selection probabilities

@@ -57,9 +57,9 @@ void require_not_started(const std::string &key, bool started) {
 
 // Settings that every pass of a pass-independent render must share.
 void require_not_started_in_pppm(const std::string &key, RenderSettings::Mode mode, bool started) {
-    if (started && mode == RenderSettings::Mode::Pppm)
-        fail(PPM_ERROR_INVALID_OPERATION,
-             "render setting '" + key + "' cannot change after the first pass in pppm mode");
+    if (started && RenderSettings::is_pass_independent(mode))
+        fail(PPM_ERROR_INVALID_OPERATION, "render setting '" + key + "' cannot change after the first pass in " +
+                                              RenderSettings::mode_name(mode) + " mode");
 }
 
 } // namespace
@@ -130,8 +130,15 @@ void RenderSettings::set_string(const std::string &key, const std::string &value
             mode = Mode::Ppm;
         else if (value == "pppm")
             mode = Mode::Pppm;
+        else if (value == "vcm")
+            mode = Mode::Vcm;
+        else if (value == "bpt")
+            mode = Mode::Bpt;
+        else if (value == "vm")
+            mode = Mode::Vm;
         else
-            invalid_argument("mode must be \"sppm\", \"ppm\" or \"pppm\", not \"" + value + "\"");
+            invalid_argument("mode must be \"sppm\", \"ppm\", \"pppm\", \"vcm\", \"bpt\" or \"vm\", not \"" + value +
+                             "\"" + did_you_mean(value, {"sppm", "ppm", "pppm", "vcm", "bpt", "vm"}));
     } else if (key == "hit_point_search") {
         if (value == "grid")
             search = Search::Grid;
@@ -173,6 +180,9 @@ const char *RenderSettings::mode_name(Mode mode) {
     case Mode::Sppm: return "sppm";
     case Mode::Ppm: return "ppm";
     case Mode::Pppm: return "pppm";
+    case Mode::Vcm: return "vcm";
+    case Mode::Bpt: return "bpt";
+    case Mode::Vm: return "vm";
     }
     return "unknown";
 }

@@ -8,7 +8,10 @@
 // |                    |        |         | and Jensen 2009); "ppm": hit points fixed by the    |
 // |                    |        |         | first eye pass, split at glass and coats (2008);    |
 // |                    |        |         | "pppm": pass-independent radii (Knaus and Zwicker   |
-// |                    |        |         | 2011): passes can be rendered apart and merged      |
+// |                    |        |         | 2011): passes can be rendered apart and merged;     |
+// |                    |        |         | "vcm": vertex connection and merging (Georgiev et   |
+// |                    |        |         | al. 2012), "bpt" its connections only, "vm" its     |
+// |                    |        |         | merging only (vcm_integrator.h); pass-independent   |
 // | photons_per_pass   | int    | 200000  | photon paths traced per pass, 1 .. 2^31             |
 // | alpha              | double | 2/3     | radius reduction, in (0, 1]                         |
 // | initial_radius     | double | 0       | gather radius in scene units; 0 = automatic:        |
@@ -44,7 +47,9 @@ constexpr std::int64_t kMaxPhotonsPerPass = std::int64_t(1) << 31;
 constexpr int kMaxDepthLimit = 1000;
 
 struct RenderSettings {
-    enum class Mode { Sppm, Ppm, Pppm }; // the numbers are what checkpoints record
+    // The numbers are what checkpoints record. Vcm, Bpt and Vm are the bidirectional modes
+    // (vcm_integrator.h): all techniques, connections only, merging only.
+    enum class Mode { Sppm, Ppm, Pppm, Vcm, Bpt, Vm };
     enum class Search { Grid, KdTree };
 
     Mode mode = Mode::Sppm;
@@ -75,6 +80,10 @@ struct RenderSettings {
     std::string get_string(const std::string &key) const;
 
     static const char *mode_name(Mode mode);
+    // Modes whose passes stand alone (their radii depend on the pass index only): their passes
+    // can be rendered apart and merged (partial renders), and every pass must share the
+    // settings fixed in pppm mode.
+    static bool is_pass_independent(Mode mode) { return mode != Mode::Sppm && mode != Mode::Ppm; }
 };
 
 } // namespace ppm

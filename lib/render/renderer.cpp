@@ -68,8 +68,9 @@ void Renderer::render_pass_index(std::uint64_t index) {
 }
 
 void Renderer::require_pass_independent(const char *what) const {
-    if (settings_.mode != RenderSettings::Mode::Pppm)
-        fail(PPM_ERROR_INVALID_OPERATION, std::string(what) + " needs mode \"pppm\" (pass-independent), not \"" +
+    if (!RenderSettings::is_pass_independent(settings_.mode))
+        fail(PPM_ERROR_INVALID_OPERATION, std::string(what) +
+                                              " needs a pass-independent mode (pppm, vcm, bpt, vm), not \"" +
                                               settings_.get_string("mode") + "\"");
 }
 
@@ -91,6 +92,18 @@ void Renderer::run_pass(std::uint64_t index) {
         if (first) film_.clear_slots();
         check_cancel();
     };
+
+    if (mode.estimates_whole_pass()) {
+        const auto start = std::chrono::steady_clock::now();
+        PassEstimate estimate;
+        mode.estimate_pass(in, pass, estimate);
+        if (cancelled()) discard();
+        last_eye_seconds_ = seconds_since(start);
+        last_photon_seconds_ = 0;
+        last_search_build_seconds_ = 0;
+        film_.commit_estimated_pass(index, estimate);
+        return;
+    }
 
     const auto eye_start = std::chrono::steady_clock::now();
     const std::optional<HitPointBounds> eye_bounds = mode.eye_pass(in, pass, film_, estimator_);

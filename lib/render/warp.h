@@ -38,6 +38,14 @@ inline void square_to_uniform_disk_concentric(double u, double v, double *x, dou
 }
 
 // Cosine-weighted upper hemisphere (z >= 0) by Malley's method: project the disk up.
+// Uniform on the unit sphere (density 1 / (4 pi)).
+inline Vec3 uniform_sphere(double u1, double u2) {
+    const double z = 1.0 - 2.0 * u1, r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    double sin_phi, cos_phi;
+    sin_cos_2pi(u2, &sin_phi, &cos_phi);
+    return {r * cos_phi, r * sin_phi, z};
+}
+
 inline Vec3 square_to_cosine_hemisphere(double u, double v) {
     double x, y;
     square_to_uniform_disk_concentric(u, v, &x, &y);

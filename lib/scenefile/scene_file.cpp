@@ -30,7 +30,7 @@ void read_integrator(const JsonNode &node, RenderSettings &settings, std::int64_
     for (const std::string &key : node.keys()) {
         const JsonNode value = node.at(key.c_str());
         if (key == "type") {
-            const std::string mode = value.one_of({"sppm", "ppm", "pppm"});
+            const std::string mode = value.one_of({"sppm", "ppm", "pppm", "vcm", "bpt", "vm"});
             apply(value, [&] { settings.set_string("mode", mode, false); });
         } else if (key == "passes") {
             passes = value.integer(0, std::int64_t(1) << 40);

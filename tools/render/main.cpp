@@ -218,8 +218,15 @@ int render(const Options &options, SignalWatcher &signals) {
     if (options.threads > 0) check(ppm_context_set_int(context, "threads", options.threads), "--threads");
     load_scene_file(context, options, &file);
     create_renderer(file, options, &renderer);
-    // Partial renders are pass-independent whatever the scene's mode.
-    if (options.partial_render()) check(ppm_renderer_set_string(renderer, "mode", "pppm"), "--partial");
+    // Partial renders are pass-independent: pppm unless the scene names another such mode
+    // (--set mode=... is applied below).
+    if (options.partial_render()) {
+        char mode[16] = "";
+        check(ppm_renderer_get_string(renderer, "mode", mode, sizeof mode, nullptr), "--partial");
+        const std::string scene_mode = mode;
+        if (scene_mode != "vcm" && scene_mode != "bpt" && scene_mode != "vm")
+            check(ppm_renderer_set_string(renderer, "mode", "pppm"), "--partial");
+    }
     if (options.photons > 0) check(ppm_renderer_set_int(renderer, "photons_per_pass", options.photons), "--photons");
     if (options.seed >= 0) check(ppm_renderer_set_int(renderer, "seed", options.seed), "--seed");
     for (const auto &[key, value] : options.settings) apply_setting(renderer, key, value);

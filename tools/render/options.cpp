@@ -169,9 +169,10 @@ void add_options(CLI::App &app, Options &o, RawOptions &raw) {
         ->group(checkpoints);
 
     const std::string farms = "Render farms (passes rendered apart, merged exactly by ppm-merge)";
-    app.add_option("--pass-range", raw.pass_range,
-                   "render passes A .. B-1 of the --passes N in the\n"
-                   "pass-independent mode \"pppm\"; needs --partial")
+    app.add_option(
+           "--pass-range", raw.pass_range,
+           "render passes A .. B-1 of the --passes N in the\n"
+           "pass-independent mode (pppm unless --set mode=vcm,\nbpt or vm, or the scene names one); needs --partial")
         ->type_name("A:B")
         ->group(farms);
     app.add_option("--partial", o.partial,
@@ -218,8 +219,10 @@ void finish(Options &o, const RawOptions &raw, bool checkpoint_given) {
         throw UsageError("--pass-range " + raw.pass_range + " goes beyond --passes " + std::to_string(o.passes));
     if (o.partial_render()) {
         for (const auto &[key, value] : o.settings)
-            if (key == "mode" && value != "pppm")
-                throw UsageError("--partial renders in mode pppm (pass-independent), not --set mode=" + value);
+            if (key == "mode" && value != "pppm" && value != "vcm" && value != "bpt" && value != "vm")
+                throw UsageError("--partial renders in a pass-independent mode (pppm, the default, vcm, bpt or vm), "
+                                 "not --set mode=" +
+                                 value);
         if (o.checkpoint_given)
             throw UsageError("--partial PATH is the checkpoint of a partial render; --checkpoint is not needed");
         o.checkpoint = o.partial;

@@ -2,7 +2,8 @@
 """Render farms on Dask (or Ray): a render's passes in chunks, rendered as tasks anywhere,
 merged exactly into one image.
 
-The render runs in the pass-independent mode ("pppm"): pass ``i`` depends only on the scene,
+The render runs in a pass-independent mode ("pppm" by default, or "vcm", "bpt", "vm"): pass
+``i`` depends only on the scene,
 the settings and ``i``, and the merge of partial renders is exact (see
 :class:`libppm.Partial`), so the image of ``passes`` passes is the same bits as one process
 rendering them, however the chunks were split, ordered, retried or resumed.
@@ -55,14 +56,19 @@ def _scene_file(path: str, threads: int) -> SceneFile:
     return scene_file
 
 
+# The modes whose passes stand alone, so that partial renders of them merge exactly.
+PASS_INDEPENDENT_MODES = ("pppm", "vcm", "bpt", "vm")
+
+
 def render_chunk(scene_path: PathLike, first: int, end: int, settings: Mapping[str, Any],
                  pass_total: int = 0, threads: int = 0) -> bytes:
-    """Renders passes ``first .. end-1`` of the scene in "pppm" mode with ``settings`` (a
-    dict of render settings) on ``threads`` threads (0: all cores) and returns the partial
+    """Renders passes ``first .. end-1`` of the scene with ``settings`` (a dict of render
+    settings; mode "pppm" unless it names another pass-independent one) on ``threads`` threads (0: all cores) and returns the partial
     render's bytes (a task's work; also usable on its own). The scene file is loaded once
     per process."""
     scene_file = _scene_file(os.fspath(scene_path), int(threads))
-    renderer = scene_file.create_renderer(mode="pppm", **settings)
+    settings = dict(settings)
+    renderer = scene_file.create_renderer(mode=settings.pop("mode", "pppm"), **settings)
     try:
         for index in range(int(first), int(end)):
             renderer.render_pass_index(index)
@@ -148,8 +154,8 @@ def render(scene_path: PathLike, passes: int, chunk_passes: Optional[int] = None
     ``callback``: called as ``callback(partial, (first, end))`` after each chunk's merge;
     returning ``False`` stops (the checkpoint keeps the passes merged so far).
     ``threads_per_task``: libppm's threads in each task (0: all cores of the worker; 1 suits
-    a worker per core). Keyword ``settings`` override the scene's integrator settings (``photons_per_pass=20000``, ``seed=3``, ...); the mode is
-    always "pppm".
+    a worker per core). Keyword ``settings`` override the scene's integrator settings (``photons_per_pass=20000``, ``seed=3``, ...); the mode
+    (``mode=``) must be pass-independent: "pppm" (the default), "vcm", "bpt" or "vm".
     """
     scene_path = os.path.abspath(os.fspath(scene_path))
     passes = int(passes)
@@ -157,9 +163,9 @@ def render(scene_path: PathLike, passes: int, chunk_passes: Optional[int] = None
         raise ValueError(f"passes must be at least 1, not {passes}")
     if (client is None) == (not ray):
         raise ValueError("give either client=<dask.distributed.Client> or ray=True")
-    if settings.get("mode", "pppm") != "pppm":
-        raise ValueError(f"distributed renders use mode 'pppm', not {settings['mode']!r}")
-    settings.pop("mode", None)
+    if settings.get("mode", "pppm") not in PASS_INDEPENDENT_MODES:
+        raise ValueError("distributed renders need a pass-independent mode (" + ", ".join(PASS_INDEPENDENT_MODES) +
+                         f"), not {settings['mode']!r}")
     for name in layers:
         if name not in ("radius", "photons"):
             raise ValueError(f"unknown layer {name!r} (layers: radius, photons)")

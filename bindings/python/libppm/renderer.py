@@ -43,7 +43,8 @@ class Renderer(Handle):
     height=48, seed=3)``.
 
     Settings (keyword arguments here, or :meth:`set` / :meth:`get`; see ppm.h):
-    ``mode`` ("sppm" | "ppm" | "pppm": pass-independent, see :class:`libppm.Partial`),
+    ``mode`` ("sppm" | "ppm" | "pppm" | "vcm" | "bpt" | "vm"; the last four are pass-independent,
+    see :class:`libppm.Partial`),
     ``photons_per_pass``, ``alpha``, ``initial_radius``,
     ``initial_radius_pixels``, ``max_depth``, ``seed``, ``hit_point_search``
     ("grid" | "kdtree"), ``direct_lighting`` (1: shadow rays, 0: photons only). mode, seed,
@@ -185,17 +186,17 @@ class Renderer(Handle):
         return stats
 
     def render_pass_index(self, index: int) -> None:
-        """Runs pass ``index`` of a pass-independent render (``mode="pppm"``), in any order;
+        """Runs pass ``index`` of a pass-independent render (a pass-independent mode: pppm, vcm, bpt, vm), in any order;
         :meth:`render_pass` there runs the lowest index not yet rendered."""
         _core.render_pass_index(self._core_object, int(index))
 
     def partial(self) -> Partial:
-        """The passes so far as a :class:`libppm.Partial` (``mode="pppm"``)."""
+        """The passes so far as a :class:`libppm.Partial` (a pass-independent mode: pppm, vcm, bpt, vm)."""
         from .partial import Partial
         return Partial(_core.renderer_partial(self._core_object))
 
     def merge_partial(self, partial: Partial) -> None:
-        """Adds a :class:`libppm.Partial`'s passes to this renderer's (``mode="pppm"``)."""
+        """Adds a :class:`libppm.Partial`'s passes to this renderer's (a pass-independent mode: pppm, vcm, bpt, vm)."""
         _core.renderer_merge_partial(self._core_object, partial._core_object)
 
     def cancel(self) -> None:
