@@ -144,6 +144,8 @@ void sppm_continues_narrow_lobes(void **state) { check(state, "sppm", 0.5); }
 void ppm_gathers_rough_lobes(void **state) { check(state, "ppm", 0.1); }
 void ppm_continues_narrow_lobes(void **state) { check(state, "ppm", 0.5, 0.1); }
 void pppm_gathers_rough_lobes(void **state) { check(state, "pppm", 0.1); }
+// The bidirectional modes evaluate every lobe in both directions (glossy_gather_alpha unused).
+void vcm_connects_rough_lobes(void **state) { check(state, "vcm", 0.2); }
 
 void setting_is_checked(void **state) {
     scene_fixture *f = static_cast<scene_fixture *>(*state);
@@ -178,6 +180,7 @@ int main() {
         cmocka_unit_test_setup_teardown(ppm_gathers_rough_lobes, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(ppm_continues_narrow_lobes, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(pppm_gathers_rough_lobes, scene_fixture_setup, scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(vcm_connects_rough_lobes, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(setting_is_checked, scene_fixture_setup, scene_fixture_teardown),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);

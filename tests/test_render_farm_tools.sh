@@ -63,6 +63,14 @@ same_image again.exr whole.exr
 expect 0 "" "$render" "$scene" "${common[@]}" --partial whole.ppmpart
 cmp -s whole.ppmpart all.ppmpart || fail "the partial of one process differs from the merged partials"
 
+# The bidirectional modes split and merge the same way.
+expect 0 "" "$render" "$scene" "${common[@]}" --set mode=vcm -o vcm-whole.exr
+expect 0 "" "$render" "$scene" "${common[@]}" --set mode=vcm --pass-range 0:4 --partial vcm-a.ppmpart --threads 1
+expect 0 "" "$render" "$scene" "${common[@]}" --set mode=vcm --pass-range 4:6 --partial vcm-b.ppmpart
+expect 0 "passes 0-5 (6 in all)" "$merge" vcm-b.ppmpart vcm-a.ppmpart -o vcm-merged.exr
+same_image vcm-merged.exr vcm-whole.exr
+expect 2 "its mode is pppm, the other's is vcm" "$merge" vcm-a.ppmpart c.ppmpart -o x.exr
+
 # A range resumed from its partial renders only the missing passes.
 expect 0 "" "$render" "$scene" "${common[@]}" --pass-range 0:2 --partial early.ppmpart
 cp early.ppmpart resumed.ppmpart

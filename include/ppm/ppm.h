@@ -641,7 +641,8 @@ PPM_API void ppm_renderer_release(ppm_renderer renderer);
  *                           "vcm" (vertex connection and merging: bidirectional path
  *                           tracing and photon merging under multiple importance
  *                           sampling, one light and one camera subpath per pixel and
- *                           pass, pinhole cameras only), "bpt" (its connections only) or
+ *                           pass; no light tracing through a thin lens), "bpt" (its
+ *                           connections only) or
  *                           "vm" (its merging only); vcm, bpt and vm are pass-independent
  *                           like pppm and do not use photons_per_pass or direct_lighting
  *                                                                              default "sppm"

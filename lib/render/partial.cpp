@@ -82,7 +82,14 @@ std::string RenderIdentity::difference(const RenderIdentity &o) const {
     const auto number = [](auto v) { return std::to_string(v); };
     if (width != o.width || height != o.height)
         return text("image size", number(width) + " x " + number(height), number(o.width) + " x " + number(o.height));
-    if (mode != o.mode) return text("mode", number(mode), number(o.mode));
+    if (mode != o.mode) {
+        const auto name = [](std::uint32_t m) {
+            return m <= static_cast<std::uint32_t>(RenderSettings::Mode::Vm)
+                       ? std::string(RenderSettings::mode_name(static_cast<RenderSettings::Mode>(m)))
+                       : std::to_string(m);
+        };
+        return text("mode", name(mode), name(o.mode));
+    }
     if (direct_lighting != o.direct_lighting)
         return text("direct_lighting", number(direct_lighting), number(o.direct_lighting));
     if (seed != o.seed) return text("seed", number(seed), number(o.seed));
@@ -186,9 +193,12 @@ Partial *Partial::parse(const char *data, std::size_t size, const std::string &o
     if (pass_total > kPassIndexLimit) corrupt(origin, "a total of " + std::to_string(pass_total) + " passes");
     const std::uint64_t passes = pass_set.count();
     if (passes == 0) corrupt(origin, "no pass");
-    if (emitted != passes * identity.photons_per_pass)
-        corrupt(origin, std::to_string(emitted) + " photons emitted in " + std::to_string(passes) + " passes of " +
-                            std::to_string(identity.photons_per_pass));
+    // pppm traces photons_per_pass photons a pass, the bidirectional modes one light subpath per pixel.
+    const bool bidirectional = identity.mode != static_cast<std::uint32_t>(RenderSettings::Mode::Pppm);
+    const std::uint64_t per_pass = bidirectional ? pixels : identity.photons_per_pass;
+    if (emitted != passes * per_pass)
+        corrupt(origin, std::to_string(emitted) + (bidirectional ? " light subpaths in " : " photons emitted in ") +
+                            std::to_string(passes) + " passes of " + std::to_string(per_pass));
     const auto stored_pixels = r.get<std::uint64_t>("pixels");
     const auto compressed_size = r.get<std::uint64_t>("pixels");
     if (stored_pixels != pixels)

@@ -88,7 +88,8 @@ Rgb VcmIntegrator::trace_camera_path(const PassInputs &in, const PassState &stat
     ppm_ray ray = camera_ray(in.camera, pixel, rng);
     const double camera_pdf_w = vcm_camera_pdf_w(in.camera, state.pixel_area, Vec3::from(ray.dir));
     if (!(camera_pdf_w > 0)) return Rgb();
-    SubpathMis mis = SubpathMis::camera_start(state.mis, camera_pdf_w);
+    // Without light tracing no technique makes the camera's first vertex from the light side.
+    SubpathMis mis = SubpathMis::camera_start(state.mis, state.light_tracing ? camera_pdf_w : 0.0);
     Rgb throughput(1.0), radiance;
     bool specular_path = true; // only specular scattering so far
     SurfacePoint sp;

@@ -73,7 +73,7 @@ void VcmIntegrator::trace_light_path(const PassInputs &in, const PassState &stat
             v.throughput = throughput;
             v.mis = mis;
             v.path_length = length;
-            if (connects()) {
+            if (state.light_tracing) {
                 // Light tracing: this vertex seen by the camera.
                 const Camera &camera = in.camera;
                 double x, y;
@@ -152,15 +152,13 @@ void VcmIntegrator::trace_light_paths(const PassInputs &in, std::uint32_t pass, 
 }
 
 void VcmIntegrator::estimate_pass(const PassInputs &in, std::uint32_t pass, PassEstimate &out) {
-    if (in.camera.is_thin_lens())
-        invalid_argument(std::string("mode \"") + RenderSettings::mode_name(in.settings.mode) +
-                         "\" needs a pinhole camera: light tracing does not sample a lens (aperture_radius is not 0)");
     const std::uint32_t pixels = static_cast<std::uint32_t>(in.camera.width()) * in.camera.height();
     PassState state;
     state.radius = merge_radius(in, pass);
     state.mis = MisFactors::make(state.radius, pixels, connects(), merges());
     state.pixel_area = in.camera.pixel_size_at_unit_distance() * in.camera.pixel_size_at_unit_distance();
     state.max_length = in.settings.max_depth + 1;
+    state.light_tracing = connects() && !in.camera.is_thin_lens();
     allocate_or_fail("the light subpaths of " + std::to_string(pixels) + " pixels",
                      std::uint64_t(pixels) * (sizeof(LightVertex) * 2 + sizeof(Rgb) * 2 + 16),
                      [&] { trace_light_paths(in, pass, state); });

@@ -23,8 +23,8 @@
 //
 // Deterministic: every subpath draws counter-based random numbers from (seed, pass, index),
 // light tracing's splats are summed in subpath order and merges in the grid's fixed order.
-// Limits: a pinhole camera only (the camera is not sampled for light tracing through a lens);
-// blends and masks pick one component per vertex, whose densities the weights use.
+// A thin lens camera is not sampled by light subpaths: the light tracing technique is then
+// off (and weighted out). Blends and masks pick one component per vertex, whose densities the weights use.
 #pragma once
 
 #include "render/integrator.h"

@@ -53,10 +53,11 @@ struct SubpathMis {
         m.dvm = m.dvc * f.vc_weight;
         return m;
     }
-    // A camera subpath, its first direction drawn with solid-angle density camera_pdf_w.
+    // A camera subpath, its first direction drawn with solid-angle density camera_pdf_w; 0
+    // when light subpaths are not connected to the camera (the light tracing technique is off).
     static SubpathMis camera_start(const MisFactors &f, double camera_pdf_w) {
         SubpathMis m;
-        m.dvcm = f.light_paths / camera_pdf_w;
+        m.dvcm = camera_pdf_w > 0 ? f.light_paths / camera_pdf_w : 0.0;
         return m;
     }
 

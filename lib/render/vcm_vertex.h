@@ -25,8 +25,9 @@ struct VcmIntegrator::LightVertex {
 struct VcmIntegrator::PassState {
     MisFactors mis;
     double radius = 0;
-    double pixel_area = 0; // of one pixel on the plane at unit distance along the view axis
-    int max_length = 0;    // segments of a full path: max_depth scattering vertices + 1
+    double pixel_area = 0;      // of one pixel on the plane at unit distance along the view axis
+    int max_length = 0;         // segments of a full path: max_depth scattering vertices + 1
+    bool light_tracing = false; // light vertices connect to the camera (not through a thin lens)
     std::vector<LightVertex> vertices;
     std::vector<std::uint32_t> path_start; // light subpath i's vertices: [path_start[i], path_start[i + 1])
     LightVertexGrid grid;                  // over the vertices, when merging

@@ -22,7 +22,7 @@ SETTINGS = {"photons_per_pass": 3000}
 
 def single_process_image(passes=PASSES, **settings):
     with libppm.load(SCENE) as f:
-        renderer = f.create_renderer(mode="pppm", **{**SETTINGS, **settings})
+        renderer = f.create_renderer(**{"mode": "pppm", **SETTINGS, **settings})
         for _ in range(passes):
             renderer.render_pass()
         return renderer.image()
@@ -54,6 +54,16 @@ def test_partials_merge_exactly_without_an_engine(tmp_path, reference):
     merged.save(tmp_path / "all.ppmpart")
     again = libppm.Partial.load(tmp_path / "all.ppmpart")
     assert again.to_bytes() == merged.to_bytes()
+
+
+def test_vcm_chunks_merge_exactly(dask_client):
+    """The bidirectional modes are pass-independent too: chunks on the engine give the bits
+    of one process."""
+    expected = single_process_image(mode="vcm")
+    image = libppm.distributed.render(SCENE, passes=PASSES, chunk_passes=3, client=dask_client, progress=False,
+                                      mode="vcm", **SETTINGS)
+    np.testing.assert_array_equal(image, expected)
+    assert expected.sum() > 0
 
 
 def test_merge_refuses_foreign_and_overlapping_partials():
