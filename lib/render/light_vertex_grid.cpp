@@ -20,14 +20,13 @@ std::uint32_t LightVertexGrid::bucket_of(std::int64_t x, std::int64_t y, std::in
 }
 
 void LightVertexGrid::build(const std::vector<Vec3> &points, double radius) {
-    points_ = points;
     r2_ = radius * radius;
     inv_cell_ = 1.0 / (2.0 * radius);
-    const std::size_t n = points_.size();
+    const std::size_t n = points.size();
     bucket_start_.assign(std::max<std::size_t>(n, 1) + 1, 0);
     std::vector<std::uint32_t> bucket(n);
     for (std::size_t i = 0; i < n; ++i) {
-        const Vec3 &q = points_[i];
+        const Vec3 &q = points[i];
         bucket[i] = bucket_of(cell(q.x * inv_cell_), cell(q.y * inv_cell_), cell(q.z * inv_cell_));
         ++bucket_start_[bucket[i] + 1];
     }
@@ -35,6 +34,8 @@ void LightVertexGrid::build(const std::vector<Vec3> &points, double radius) {
     order_.resize(n);
     std::vector<std::uint32_t> next(bucket_start_.begin(), bucket_start_.end() - 1);
     for (std::size_t i = 0; i < n; ++i) order_[next[bucket[i]]++] = static_cast<std::uint32_t>(i);
+    sorted_points_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) sorted_points_[k] = points[order_[k]];
 }
 
 int LightVertexGrid::near_buckets(const Vec3 &p, std::uint32_t out[8]) const {

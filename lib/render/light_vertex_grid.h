@@ -18,27 +18,29 @@ class LightVertexGrid {
 public:
     // Indexes points[0 .. n) (copied); radius > 0.
     void build(const std::vector<Vec3> &points, double radius);
-    bool empty() const { return points_.empty(); }
+    bool empty() const { return sorted_points_.empty(); }
 
-    // f(index) for every point within the radius of p (distance^2 <= r^2).
+    // The points' indices in the grid's order (by bucket).
+    const std::vector<std::uint32_t> &order() const { return order_; }
+
+    // f(k) for every point within the radius of p (distance^2 <= r^2), k its position in
+    // order() (so that data kept in that order is read bucket by bucket, not at random).
     template <class F> void for_each_within(const Vec3 &p, F &&f) const {
-        if (points_.empty()) return;
+        if (sorted_points_.empty()) return;
         std::uint32_t buckets[8];
         const int count = near_buckets(p, buckets);
         for (int b = 0; b < count; ++b)
-            for (std::uint32_t k = bucket_start_[buckets[b]]; k < bucket_start_[buckets[b] + 1]; ++k) {
-                const std::uint32_t index = order_[k];
-                if (length2(points_[index] - p) <= r2_) f(index);
-            }
+            for (std::uint32_t k = bucket_start_[buckets[b]]; k < bucket_start_[buckets[b] + 1]; ++k)
+                if (length2(sorted_points_[k] - p) <= r2_) f(k);
     }
 
 private:
     std::uint32_t bucket_of(std::int64_t x, std::int64_t y, std::int64_t z) const;
     int near_buckets(const Vec3 &p, std::uint32_t out[8]) const; // distinct buckets
 
-    std::vector<Vec3> points_;
     std::vector<std::uint32_t> bucket_start_; // buckets + 1 entries
     std::vector<std::uint32_t> order_;        // point indices sorted by bucket, stable
+    std::vector<Vec3> sorted_points_;         // the points in that order: a bucket is read in one go
     double inv_cell_ = 0, r2_ = 0;
 };
 

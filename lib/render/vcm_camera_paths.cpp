@@ -139,14 +139,17 @@ Rgb VcmIntegrator::trace_camera_path(const PassInputs &in, const PassState &stat
                 Rgb merged;
                 const double cont = vcm_continuation(sp.bsdf);
                 state.grid.for_each_within(sp.p, [&](std::uint32_t k) {
-                    const LightVertex &v = state.vertices[k];
+                    const PassState::MergeRecord &v = state.merge_records[k];
                     if (static_cast<int>(v.path_length + length) > state.max_length) return;
-                    const Vec3 wi = sp.frame.to_local(v.sp.frame.to_world(v.sp.wo_local));
+                    const Vec3 wi = sp.frame.to_local(v.arriving);
                     const Rgb f = sp.bsdf.eval(sp.wo_local, wi, TransportMode::Radiance);
                     if (f.is_black()) return;
                     ++merge_count;
+                    SubpathMis light;
+                    light.dvcm = v.dvcm;
+                    light.dvm = v.dvm;
                     const double w = merge_only ? 1.0
-                                                : mis_merge(state.mis, mis, v.mis, sp.bsdf.pdf(sp.wo_local, wi) * cont,
+                                                : mis_merge(state.mis, mis, light, sp.bsdf.pdf(sp.wo_local, wi) * cont,
                                                             sp.bsdf.pdf(wi, sp.wo_local) * cont);
                     merged += f * v.throughput * w;
                 });

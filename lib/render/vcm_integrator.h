@@ -66,6 +66,7 @@ private:
                           std::uint32_t &merge_count) const;
 
     Techniques techniques_;
+    std::shared_ptr<PassState> state_; // reused from pass to pass
 };
 
 } // namespace ppm

@@ -32,6 +32,20 @@ struct VcmIntegrator::PassState {
     std::vector<std::uint32_t> path_start; // light subpath i's vertices: [path_start[i], path_start[i + 1])
     LightVertexGrid grid;                  // over the vertices, when merging
     std::vector<Rgb> splat;                // per pixel: light tracing's sum
+    std::vector<Vec3> points;              // the vertices' positions, for the grid
+    // What merging reads of a light vertex, in the grid's order: a query reads its buckets'
+    // records one after the other instead of whole vertices at random.
+    struct MergeRecord {
+        Vec3 arriving; // world direction towards where the light came from
+        Rgb throughput;
+        double dvcm = 0, dvm = 0;
+        std::uint32_t path_length = 0;
+    };
+    std::vector<MergeRecord> merge_records;
+    // Per block of light subpaths while they are traced (vcm_integrator.cpp).
+    std::vector<std::vector<LightVertex>> block_vertices;
+    std::vector<std::vector<std::uint32_t>> block_counts;
+    std::vector<std::vector<std::pair<std::uint32_t, Rgb>>> block_splats;
 };
 
 // Whether a BSDF has a part other techniques can reach (eval and pdf non-zero): every
