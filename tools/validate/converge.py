@@ -21,7 +21,8 @@ Method, per scene:
      max_depth = libppm's max_depth + 1 (Mitsuba also counts the emitter vertex), rendered as
      two independent halves h1, h2 of --reference-spp samples per pixel each (other seeds),
      cached in DIR/reference/ under the scene's name, size, integrator, spp and a hash of the
-     scene file, so that a rerun reuses them. The reference is ref = (h1 + h2) / 2.
+     scene file, so that a rerun reuses them (a half interrupted goes on from its last save,
+     DIR/reference/*.partial.npz, every minute). The reference is ref = (h1 + h2) / 2.
   2. For each time T in --times: libppm once per mode in --modes (`ppm-render SCENE --time T
      --set mode=M`), and Mitsuba's path tracer (and its light tracer on cornell-caustic) for
      the same wall time, each on all cores. Mitsuba's own `timeout` property cannot be used:
@@ -57,7 +58,7 @@ lowest priority when the machine is shared:
   python3 -m venv /tmp/mi && /tmp/mi/bin/pip install mitsuba numpy matplotlib
   nice -n 19 /tmp/mi/bin/python tools/validate/converge.py --modes sppm --times 10,40,160
   nice -n 19 /tmp/mi/bin/python tools/validate/converge.py --quick      # a smoke test
---quick renders a quarter of each film size (32 x 32), 256-spp references and 1 and 2 s.
+--quick renders a quarter of each film size (32 x 32), reference halves of 128 spp, and 1 and 2 s.
 
 Exit status: 0 ok, 1 usage error, 2 runtime error (Mitsuba or ppm-render missing or failing).
 """
@@ -71,9 +72,14 @@ import subprocess
 import sys
 import time
 
-import numpy as np
+try:
+    import numpy as np
 
-import to_mitsuba
+    import to_mitsuba
+except ImportError as e:
+    print(f"converge.py: {e}: run this script with a Python that has Mitsuba 3 and numpy "
+          "(python3 -m venv /tmp/mi && /tmp/mi/bin/pip install mitsuba numpy matplotlib)", file=sys.stderr)
+    sys.exit(2)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = to_mitsuba.REPO
@@ -123,6 +129,21 @@ def mitsuba():
                            "that has it (python3 -m venv /tmp/mi && /tmp/mi/bin/pip install mitsuba numpy "
                            "matplotlib)") from None
     return mi
+
+
+def quiet_mitsuba(mi):
+    """Mitsuba's warnings and errors to stderr, without its progress bars (the light tracer
+    draws one on stdout at any log level): this script reports its own progress."""
+    class Appender(mi.Appender):
+        def append(self, level, text):
+            print(text, file=sys.stderr)
+
+        def log_progress(self, progress, name, formatted, eta, ptr=None):
+            pass
+
+    mi.set_log_level(mi.LogLevel.Warn)
+    mi.logger().clear_appenders()
+    mi.logger().add_appender(Appender())
 
 
 # ---- the scenes in Mitsuba ---------------------------------------------------------------------
@@ -191,19 +212,31 @@ def scene_hash(scene):
         return hashlib.sha1(f.read()).hexdigest()[:8]
 
 
-def render_mitsuba_spp(mi_scene, spp, seed, what):
-    """spp samples per pixel in batches of at most 256 (progress every ~30 s)."""
+def render_mitsuba_spp(mi_scene, spp, seed, what, partial=None):
+    """spp samples per pixel in batches of 256 (batch k with seed + k), progress every ~30 s.
+    With `partial` (a .npz path), the sum so far is saved there after each ~60 s and an
+    interrupted render goes on from it: the same batches, the same image."""
     mi = mitsuba()
-    total, done, batch, start, shown = None, 0, 0, time.perf_counter(), time.perf_counter()
+    total, done, start, shown, saved = None, 0, time.perf_counter(), time.perf_counter(), time.perf_counter()
+    if partial and os.path.exists(partial):
+        with np.load(partial) as f:
+            total, done = f["total"], int(f["done"])
+        log(f"  {what}: going on from {done} spp ({partial})")
+    first = done
     while done < spp:
         n = min(256, spp - done)
-        image = np.array(mi.render(mi_scene, spp=n, seed=seed + batch), dtype=np.float64)[..., :3]
+        image = np.array(mi.render(mi_scene, spp=n, seed=seed + done // 256), dtype=np.float64)[..., :3]
         total = image * n if total is None else total + image * n
-        done, batch = done + n, batch + 1
-        if time.perf_counter() - shown > 30 and done < spp:
-            elapsed = time.perf_counter() - start
-            log(f"  {what}: {done} of {spp} spp, {elapsed:.0f} s, {elapsed * (spp - done) / done:.0f} s to go")
-            shown = time.perf_counter()
+        done += n
+        now = time.perf_counter()
+        if partial and now - saved > 60 and done < spp:
+            np.savez(partial + ".tmp.npz", total=total, done=done)
+            os.replace(partial + ".tmp.npz", partial)
+            saved = now
+        if now - shown > 30 and done < spp:
+            rate = (now - start) / (done - first)
+            log(f"  {what}: {done} of {spp} spp, {now - start:.0f} s, {rate * (spp - done):.0f} s to go")
+            shown = now
     return total / spp, time.perf_counter() - start
 
 
@@ -245,11 +278,14 @@ def reference_halves(scenes, scene, spp, out):
             continue
         log(f"{scene.name}: rendering reference half {tag}: Mitsuba {scene.reference}, {spp} spp, "
             f"{width} x {height}")
+        partial = path[:-4] + ".partial.npz"
         image, seconds = render_mitsuba_spp(scenes.load(scene, scene.reference), spp, SEED_HALF[k],
-                                            f"reference half {tag}")
+                                            f"reference half {tag}", partial)
         log(f"{scene.name}: reference half {tag} took {seconds:.1f} s")
         mi.Bitmap(image.astype(np.float32)).write(path + ".tmp.exr")
         os.replace(path + ".tmp.exr", path)
+        if os.path.exists(partial):
+            os.remove(partial)
         halves.append(image)
     return halves
 
@@ -288,6 +324,23 @@ def render_libppm(binary, scene, size, mode, seconds, seed, settings, path):
     match = SUMMARY.search(result.stderr)
     passes, render_seconds = (int(match.group(1)), float(match.group(2))) if match else (0, wall)
     return to_mitsuba.read_exr(path).astype(np.float64), passes, render_seconds, wall
+
+
+def check_modes(binary, scene, modes, settings, out):
+    """One tiny pass per mode before any reference is rendered: a misspelt mode or setting
+    fails here, not after an hour of references."""
+    for mode in modes:
+        command = [binary, scene.path, "-o", os.path.join(out, "check-mode.exr"), "--passes", "1", "--photons",
+                   "1000", "--size", "8x8", "--quiet", "--set", f"mode={mode}"]
+        if scene.is_xml:
+            command += ["-D", "res=8"]
+        for item in settings:
+            command += ["--set", item]
+        result = subprocess.run(command, capture_output=True, text=True)
+        if result.returncode != 0:
+            raise RuntimeError(f"ppm-render cannot render mode '{mode}': {result.stderr.strip()}")
+    if modes:
+        os.remove(os.path.join(out, "check-mode.exr"))
 
 
 # ---- errors ------------------------------------------------------------------------------------
@@ -333,6 +386,7 @@ def chart(rows, scene, path):
         return False
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import matplotlib.ticker
     mine = [r for r in rows if r["scene"] == scene.name]
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
     for label in dict.fromkeys(f"{r['renderer']} {r['mode']}" for r in mine):
@@ -345,6 +399,8 @@ def chart(rows, scene, path):
     for ax, key, level in zip(axes, ("relMSE", "RMSE"), noise):
         ax.axhline(level, color="grey", linestyle="--", linewidth=1, label="reference noise (subtracted)")
         ax.set_xlabel("seconds rendering (all cores)")
+        ax.xaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         ax.set_ylabel(f"{key} against the reference")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8)
@@ -378,14 +434,20 @@ def print_table(rows, scenes_run):
           "samples: libppm's passes, Mitsuba's samples per pixel")
 
 
+class Parser(argparse.ArgumentParser):
+    def error(self, message):
+        self.print_usage(sys.stderr)
+        self.exit(1, f"{self.prog}: error: {message}\n")
+
+
 def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = Parser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--scenes", default=DEFAULT_SCENES,
                         help=f"comma-separated, of {', '.join(s.name for s in SCENES)} (default: {DEFAULT_SCENES})")
     parser.add_argument("--modes", default="sppm", help="libppm modes, comma separated (--set mode=NAME; default sppm)")
     parser.add_argument("--times", help="seconds per render, comma separated (default 10,40,160; --quick: 1,2)")
     parser.add_argument("--reference-spp", type=int,
-                        help="samples per pixel of each of the reference's two halves (default 16384; --quick: 128)")
+                        help="samples per pixel of each of the reference's two halves (default 8192; --quick: 128)")
     parser.add_argument("--out", help="output folder (default build/converge; --quick: build/converge-quick)")
     parser.add_argument("--scale", type=float,
                         help="scale every film size by this factor (default 1, the scene's; --quick: 0.25)")
@@ -418,7 +480,7 @@ def main():
     film_scale = args.scale or (QUICK_SCALE if args.quick else 1.0)
     if film_scale <= 0:
         parser.error("--scale: must be > 0")
-    spp = args.reference_spp or (128 if args.quick else 16384)
+    spp = args.reference_spp or (128 if args.quick else 8192)
     if spp < 1:
         parser.error("--reference-spp: must be >= 1")
     out = os.path.abspath(args.out or os.path.join(REPO, "build", "converge-quick" if args.quick else "converge"))
@@ -431,12 +493,13 @@ def main():
             raise RuntimeError(f"no ppm-render executable at {args.ppm_render} (build libppm, or give --ppm-render PATH)")
         mi = mitsuba()
         to_mitsuba.set_variant(args.variant)
-        mi.set_log_level(mi.LogLevel.Warn)  # no progress bars: this script prints its own progress
+        quiet_mitsuba(mi)
         tess = to_mitsuba.find_tess(args.tess) or "ppm-tess"
         os.makedirs(out, exist_ok=True)
         log(f"Mitsuba {mi.__version__} ({args.variant}), libppm modes {', '.join(modes) or 'none'}, "
             f"times {', '.join(f'{t:g}' for t in times)} s, reference 2 x {spp} spp, output {out}")
         scenes = MitsubaScenes(out, tess, film_scale)
+        check_modes(args.ppm_render, chosen[0], modes, args.settings, out)
         rows = []
         csv_path = os.path.join(out, "converge.csv")
         for scene in chosen:
