@@ -18,7 +18,7 @@
 // the direct light from photons too. "bpt" never merges.
 //
 // Russian roulette: a subpath continues at a vertex with a probability that depends on its
-// BSDF alone (the largest diffuse reflectance, 1 for other types), so that both directions
+// BSDF alone (the largest diffuse reflectance, plus 0.1 under a coat; 1 for metals and glass), so that both directions
 // see the same probability and the densities of every technique include it.
 //
 // Deterministic: every subpath draws counter-based random numbers from (seed, pass, index),

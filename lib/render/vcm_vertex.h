@@ -56,9 +56,15 @@ inline bool vcm_connectible(const Bsdf &bsdf) {
 }
 
 // Russian roulette's continuation probability at a vertex: its BSDF's alone (vcm_integrator.h).
+// Diffuse: its largest reflectance; a coat over a diffuse base reflects a little more (its
+// Fresnel share): that plus 0.1. Metals and glass lose little: 1.
 inline double vcm_continuation(const Bsdf &bsdf) {
-    if (bsdf.type() != Bsdf::Type::Diffuse) return 1.0;
-    return std::min(1.0, std::max(0.05, bsdf.reflectance().max()));
+    switch (bsdf.type()) {
+    case Bsdf::Type::Diffuse: return std::min(1.0, std::max(0.05, bsdf.reflectance().max()));
+    case Bsdf::Type::Coated:
+    case Bsdf::Type::RoughPlastic: return std::min(1.0, std::max(0.05, bsdf.reflectance().max() + 0.1));
+    default: return 1.0;
+    }
 }
 
 // The solid-angle density of the pinhole camera's ray along unit `direction`: film positions
