@@ -203,11 +203,7 @@ void Renderer::load_checkpoint(const std::string &path) {
         differs("image size", std::to_string(width_) + " x " + std::to_string(height_),
                 std::to_string(width()) + " x " + std::to_string(height()));
     if (mode != static_cast<std::uint32_t>(settings_.mode))
-        differs("mode",
-                mode <= static_cast<std::uint32_t>(RenderSettings::Mode::Vm)
-                    ? RenderSettings::mode_name(static_cast<RenderSettings::Mode>(mode))
-                    : "unknown",
-                settings_.get_string("mode"));
+        differs("mode", RenderSettings::mode_name(mode), settings_.get_string("mode"));
     if (direct != static_cast<std::uint32_t>(settings_.direct_lighting))
         differs("direct_lighting", std::to_string(direct), std::to_string(settings_.direct_lighting));
     if (seed != settings_.seed) differs("seed", std::to_string(seed), std::to_string(settings_.seed));

@@ -82,14 +82,7 @@ std::string RenderIdentity::difference(const RenderIdentity &o) const {
     const auto number = [](auto v) { return std::to_string(v); };
     if (width != o.width || height != o.height)
         return text("image size", number(width) + " x " + number(height), number(o.width) + " x " + number(o.height));
-    if (mode != o.mode) {
-        const auto name = [](std::uint32_t m) {
-            return m <= static_cast<std::uint32_t>(RenderSettings::Mode::Vm)
-                       ? std::string(RenderSettings::mode_name(static_cast<RenderSettings::Mode>(m)))
-                       : std::to_string(m);
-        };
-        return text("mode", name(mode), name(o.mode));
-    }
+    if (mode != o.mode) return text("mode", RenderSettings::mode_name(mode), RenderSettings::mode_name(o.mode));
     if (direct_lighting != o.direct_lighting)
         return text("direct_lighting", number(direct_lighting), number(o.direct_lighting));
     if (seed != o.seed) return text("seed", number(seed), number(o.seed));

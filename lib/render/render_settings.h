@@ -80,6 +80,10 @@ struct RenderSettings {
     std::string get_string(const std::string &key) const;
 
     static const char *mode_name(Mode mode);
+    // The name of a mode number read from a file ("unknown" for a number no mode has).
+    static const char *mode_name(std::uint32_t number) {
+        return number <= static_cast<std::uint32_t>(Mode::Vm) ? mode_name(static_cast<Mode>(number)) : "unknown";
+    }
     // Modes whose passes stand alone (their radii depend on the pass index only): their passes
     // can be rendered apart and merged (partial renders), and every pass must share the
     // settings fixed in pppm mode.

@@ -19,6 +19,33 @@ namespace {
 // apart and joined in block order, so the result does not depend on the threads.
 constexpr std::uint32_t kLightBlock = 64;
 
+// Light tracing: light vertex `v` seen by the (pinhole) camera, its radiance splatted to the
+// pixel it projects to.
+void trace_to_camera(const PassInputs &in, const VcmIntegrator::PassState &state, const VcmIntegrator::LightVertex &v,
+                     std::vector<std::pair<std::uint32_t, Rgb>> &splats) {
+    const Camera &camera = in.camera;
+    double x, y;
+    if (!camera.project(v.sp.p, &x, &y) || !(x >= 0 && y >= 0 && x < camera.width() && y < camera.height())) return;
+    const Vec3 to_camera = camera.position() - v.sp.p;
+    const double d2 = length2(to_camera), d = std::sqrt(d2);
+    const Vec3 dir = to_camera / d;
+    const double depth = -dot(dir, camera.forward()) * d;
+    const Vec3 wi = v.sp.frame.to_local(dir);
+    const Rgb f = v.sp.bsdf.eval(v.sp.wo_local, wi, TransportMode::Importance);
+    const double camera_pdf_w = vcm_camera_pdf_w(camera, state.pixel_area, dir * -1.0);
+    if (f.is_black() || !(camera_pdf_w > 0) || depth < camera.near_clip()) return;
+    const double camera_pdf_a = camera_pdf_w * std::fabs(wi.z) / d2;
+    const double rev = v.sp.bsdf.pdf(wi, v.sp.wo_local) * vcm_continuation(v.sp.bsdf);
+    const double w = mis_light_trace(state.mis, v.mis, camera_pdf_a, rev);
+    // The camera sees from its near clip plane on (what lies before it is not seen).
+    const double cos_camera = depth / d;
+    const double tfar = (d - camera.near_clip() / cos_camera) * (1 - 1e-7) - 8 * v.sp.hit.p_error;
+    if (!(tfar > 0) || in.scene.scene().occluded(spawn_ray(v.sp.hit, dir, tfar), RayHints{&v.sp.hit})) return;
+    const std::uint32_t px = static_cast<std::uint32_t>(x), py = static_cast<std::uint32_t>(y);
+    splats.emplace_back(py * static_cast<std::uint32_t>(camera.width()) + px,
+                        v.throughput * f * (w * camera_pdf_a / state.mis.light_paths));
+}
+
 } // namespace
 
 std::optional<HitPointBounds> VcmIntegrator::eye_pass(const PassInputs &, std::uint32_t, Film &, DensityEstimator &) {
@@ -73,35 +100,8 @@ void VcmIntegrator::trace_light_path(const PassInputs &in, const PassState &stat
             v.throughput = throughput;
             v.mis = mis;
             v.path_length = length;
-            if (state.light_tracing) {
-                // Light tracing: this vertex seen by the camera.
-                const Camera &camera = in.camera;
-                double x, y;
-                if (camera.project(v.sp.p, &x, &y) && x >= 0 && y >= 0 && x < camera.width() && y < camera.height()) {
-                    const Vec3 to_camera = camera.position() - v.sp.p;
-                    const double d2 = length2(to_camera), d = std::sqrt(d2);
-                    const Vec3 dir = to_camera / d;
-                    const double depth = -dot(dir, camera.forward()) * d;
-                    const Vec3 wi = v.sp.frame.to_local(dir);
-                    const Rgb f = v.sp.bsdf.eval(v.sp.wo_local, wi, TransportMode::Importance);
-                    const double camera_pdf_w = vcm_camera_pdf_w(camera, state.pixel_area, dir * -1.0);
-                    if (!f.is_black() && camera_pdf_w > 0 && depth >= camera.near_clip()) {
-                        const double cos_surface = std::fabs(wi.z);
-                        const double camera_pdf_a = camera_pdf_w * cos_surface / d2;
-                        const double rev = v.sp.bsdf.pdf(wi, v.sp.wo_local) * vcm_continuation(v.sp.bsdf);
-                        const double w = mis_light_trace(state.mis, mis, camera_pdf_a, rev);
-                        const Rgb value = throughput * f * (w * camera_pdf_a / state.mis.light_paths);
-                        // The camera sees from its near clip plane on (what lies before it is not seen).
-                        const double cos_camera = depth / d;
-                        const double tfar = (d - camera.near_clip() / cos_camera) * (1 - 1e-7) - 8 * v.sp.hit.p_error;
-                        if (tfar > 0 && !scene.scene().occluded(spawn_ray(v.sp.hit, dir, tfar), RayHints{&v.sp.hit})) {
-                            const std::uint32_t px = static_cast<std::uint32_t>(x), py = static_cast<std::uint32_t>(y);
-                            splats.emplace_back(py * static_cast<std::uint32_t>(camera.width()) + px, value);
-                        }
-                    }
-                }
-            }
-            if (merges() || connects()) vertices.push_back(v);
+            if (state.light_tracing) trace_to_camera(in, state, v, splats);
+            vertices.push_back(v);
         }
         if (static_cast<int>(length) + 2 > state.max_length) return;
         VcmScatter s;
