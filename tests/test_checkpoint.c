@@ -188,6 +188,7 @@ static void test_bad_checkpoints_are_refused(void **state) {
     camera.fov += 1;
     ppm_renderer moved = NULL;
     assert_int_equal(ppm_renderer_create(scene, &camera, &moved), PPM_OK);
+    assert_int_equal(ppm_renderer_set_string(moved, "mode", "sppm"), PPM_OK);
     assert_int_equal(ppm_renderer_set_int(moved, "seed", 7), PPM_OK);
     assert_int_equal(ppm_renderer_load_checkpoint(moved, f->path), PPM_ERROR_INVALID_ARGUMENT);
     assert_non_null(strstr(ppm_last_error_message(), "camera differs"));

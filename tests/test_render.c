@@ -11,7 +11,8 @@
  *  - a spot light: full intensity inside the beam, none beyond the cutoff; photons and
  *    shadow rays agree when two lights share the power (light selection probabilities);
  *  - the same seed gives the same image for 1 and 2 threads, another seed another image;
- *  - cancel, settings and argument errors. */
+ *  - cancel, settings and argument errors.
+ * All in the photon modes (sppm unless a test sets another). */
 #include <ppm/ppm.h>
 
 #include "api_asserts.h"
@@ -44,6 +45,9 @@ static ppm_renderer make_renderer(ppm_scene scene, const double origin[3], const
     camera.height = (uint32_t)height;
     ppm_renderer renderer = NULL;
     assert_ppm_ok(ppm_renderer_create(scene, &camera, &renderer));
+    /* These are the photon modes' tests (the bidirectional ones are test_vcm's); the default
+     * mode, vcm, would also blur the spot's cutoff by its merging radius. */
+    assert_ppm_ok(ppm_renderer_set_string(renderer, "mode", "sppm"));
     return renderer;
 }
 

@@ -164,6 +164,7 @@ static void test_renderer_read_only_values(void **state) {
     assert_ppm_error(ppm_renderer_get_int(r, "last_photon_pass_seconds", &n), PPM_ERROR_INVALID_ARGUMENT,
                      "'last_photon_pass_seconds' is a double");
     assert_int_equal(n, -1);
+    assert_ppm_ok(ppm_renderer_set_string(r, "mode", "sppm")); /* the photon count is sppm's */
     assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", 500));
     assert_ppm_ok(ppm_render_pass(r));
     assert_ppm_ok(ppm_renderer_get_double(r, "passes", &d));

@@ -7,7 +7,9 @@
 //  - a point light over a diffuse plane gives the analytic rho/pi I cos / d^2 per pixel;
 //  - the modes agree with sppm on a box with a glass ball under an area light;
 //  - the image is the same bits for 1 and 2 threads, and for passes split between two
-//    renderers and merged as partials; a thin lens camera works without light tracing.
+//    renderers and merged as partials; a thin lens camera works without light tracing;
+//  - a film of more pixels than the light subpaths of a pass shares them correctly.
+#include "render/render_settings.h"
 #include "render/vcm_mis.h"
 
 #include "api_asserts.h"
@@ -357,6 +359,35 @@ void thin_lens_furnace(void **state) {
     }
 }
 
+// A film of more pixels than the light subpaths of a pass (light_subpaths_per_pass): camera
+// subpaths past the last light subpath connect to light subpath (pixel mod count), and the
+// weights count the light subpaths traced. The furnace must stay at Le / (1 - albedo) on the
+// rows whose camera subpaths share light subpaths too.
+void more_pixels_than_light_subpaths(void **state) {
+    scene_fixture *f = static_cast<scene_fixture *>(*state);
+    add_box(f->scene, 0.5, 1.0, 1.0);
+    assert_ppm_ok(ppm_scene_commit(f->scene));
+    ppm_camera camera = box_camera();
+    camera.width = 640, camera.height = 512;
+    const std::uint64_t pixels = std::uint64_t(camera.width) * camera.height;
+    assert_true(pixels > kMaxLightSubpathsPerPass);
+    ppm_renderer r = nullptr;
+    assert_ppm_ok(ppm_renderer_create(f->scene, &camera, &r));
+    assert_ppm_ok(ppm_render_pass(r)); // the default mode, vcm
+    int64_t emitted = 0;
+    assert_ppm_ok(ppm_renderer_get_int(r, "photons_emitted", &emitted));
+    assert_int_equal(emitted, kMaxLightSubpathsPerPass);
+    std::vector<float> rgb(3 * pixels);
+    assert_ppm_ok(ppm_renderer_get_layer(r, "radiance", rgb.data(), rgb.size()));
+    ppm_renderer_release(r);
+    const std::size_t shared_from = 3 * kMaxLightSubpathsPerPass;
+    const double all = mean(rgb);
+    const double shared = mean(std::vector<float>(rgb.begin() + shared_from, rgb.end()));
+    std::printf("wide furnace: mean %.4f, of the pixels sharing light subpaths %.4f, expected 2\n", all, shared);
+    assert_close(all, 2.0, 0.02 * 2.0);
+    assert_close(shared, 2.0, 0.02 * 2.0);
+}
+
 } // namespace
 
 int main() {
@@ -369,6 +400,7 @@ int main() {
         cmocka_unit_test_setup_teardown(same_bits_for_any_threads_and_split_passes, scene_fixture_setup,
                                         scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(thin_lens_furnace, scene_fixture_setup, scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(more_pixels_than_light_subpaths, scene_fixture_setup, scene_fixture_teardown),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

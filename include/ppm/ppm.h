@@ -634,18 +634,21 @@ PPM_API ppm_status ppm_renderer_retain(ppm_renderer renderer);
 PPM_API void ppm_renderer_release(ppm_renderer renderer);
 
 /* Settings (defaults):
- *   "mode"                  string "sppm" (stochastic PPM, new eye pass each pass), "ppm"
+ *   "mode"                  string "vcm" (the default: the least error at equal time on
+ *                           the benchmark scenes of docs/bench/converge.md), "sppm"
+ *                           (stochastic PPM, new eye pass each pass), "ppm"
  *                           (classic: hit points fixed by the first pass) or "pppm"
  *                           (probabilistic PPM: each pass's radius depends on its index
  *                           only, so passes render apart and merge; see partial renders),
  *                           "vcm" (vertex connection and merging: bidirectional path
  *                           tracing and photon merging under multiple importance
- *                           sampling, one light and one camera subpath per pixel and
- *                           pass; no light tracing through a thin lens), "bpt" (its
+ *                           sampling, one camera subpath per pixel and pass and as many
+ *                           light subpaths up to 2^18; no light tracing through a thin
+ *                           lens), "bpt" (its
  *                           connections only) or
  *                           "vm" (its merging only); vcm, bpt and vm are pass-independent
  *                           like pppm and do not use photons_per_pass or direct_lighting
- *                                                                              default "sppm"
+ *                                                                              default "vcm"
  *   "photons_per_pass"      int    1 .. 2^31                                  default 200000
  *   "alpha"                 double radius reduction in (0, 1]                 default 2/3
  *   "initial_radius"        double scene units; 0 = automatic                 default 0

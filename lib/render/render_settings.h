@@ -4,15 +4,19 @@
 //
 // | key                | type   | default | meaning                                            |
 // |--------------------|--------|---------|----------------------------------------------------|
-// | mode               | string | sppm    | "sppm": new jittered eye pass every pass (Hachisuka |
+// | mode               | string | vcm     | "sppm": new jittered eye pass every pass (Hachisuka |
 // |                    |        |         | and Jensen 2009); "ppm": hit points fixed by the    |
 // |                    |        |         | first eye pass, split at glass and coats (2008);    |
 // |                    |        |         | "pppm": pass-independent radii (Knaus and Zwicker   |
 // |                    |        |         | 2011): passes can be rendered apart and merged;     |
 // |                    |        |         | "vcm": vertex connection and merging (Georgiev et   |
 // |                    |        |         | al. 2012), "bpt" its connections only, "vm" its     |
-// |                    |        |         | merging only (vcm_integrator.h); pass-independent   |
-// | photons_per_pass   | int    | 200000  | photon paths traced per pass, 1 .. 2^31             |
+// |                    |        |         | merging only (vcm_integrator.h); pass-independent.  |
+// |                    |        |         | vcm is the default: the least error at equal time   |
+// |                    |        |         | (docs/bench/converge.md)                            |
+// | photons_per_pass   | int    | 200000  | photon paths traced per pass, 1 .. 2^31 (the        |
+// |                    |        |         | bidirectional modes: one light subpath per pixel,   |
+// |                    |        |         | light_subpaths_per_pass)                            |
 // | alpha              | double | 2/3     | radius reduction, in (0, 1]                         |
 // | initial_radius     | double | 0       | gather radius in scene units; 0 = automatic:        |
 // |                    |        |         | initial_radius_pixels pixel footprints at each      |
@@ -46,13 +50,21 @@ namespace ppm {
 constexpr std::int64_t kMaxPhotonsPerPass = std::int64_t(1) << 31;
 constexpr int kMaxDepthLimit = 1000;
 
+// The bidirectional modes trace one light subpath per pixel and pass, at most this many: the
+// stored vertices take about 2 KB per subpath in a closed room, so the cap bounds them to
+// ~ 0.5 GB at any film size. Camera subpath p connects to light subpath p mod the count.
+constexpr std::uint64_t kMaxLightSubpathsPerPass = std::uint64_t(1) << 18;
+inline std::uint64_t light_subpaths_per_pass(std::uint64_t pixels) {
+    return pixels < kMaxLightSubpathsPerPass ? pixels : kMaxLightSubpathsPerPass;
+}
+
 struct RenderSettings {
     // The numbers are what checkpoints record. Vcm, Bpt and Vm are the bidirectional modes
     // (vcm_integrator.h): all techniques, connections only, merging only.
     enum class Mode { Sppm, Ppm, Pppm, Vcm, Bpt, Vm };
     enum class Search { Grid, KdTree };
 
-    Mode mode = Mode::Sppm;
+    Mode mode = Mode::Vcm;
     std::uint64_t photons_per_pass = 200000;
     double alpha = 2.0 / 3.0;
     double initial_radius = 0;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // The bidirectional modes' camera subpaths (vcm_integrator.h): emission hit, next event,
-// connection to the light subpath of the same index and merging, each weighted by vcm_mis.h.
+// connection to the light subpath of the same index (mod their count) and merging, each weighted by vcm_mis.h.
 #include "render/camera_paths.h"
 #include "render/vcm_integrator.h"
 #include "render/vcm_vertex.h"
@@ -128,9 +128,9 @@ Rgb VcmIntegrator::trace_camera_path(const PassInputs &in, const PassState &stat
         if (vcm_connectible(sp.bsdf)) {
             if (connects()) {
                 radiance += throughput * next_event(in, state.mis, sp, mis, rng);
-                const std::uint32_t light_path = pixel; // one light subpath per pixel
+                const std::uint32_t light_path = pixel % state.light_paths;
                 for (std::uint32_t k = state.path_start[light_path]; k < state.path_start[light_path + 1]; ++k) {
-                    const LightVertex &v = state.vertices[k];
+                    const LightVertex &v = *state.vertices[k];
                     if (static_cast<int>(v.path_length + length + 1) > state.max_length) break;
                     radiance += throughput * connect(in, state.mis, sp, mis, v);
                 }

@@ -114,7 +114,7 @@ void VcmIntegrator::trace_light_path(const PassInputs &in, const PassState &stat
 }
 
 void VcmIntegrator::trace_light_paths(const PassInputs &in, std::uint32_t pass, PassState &state) const {
-    const std::uint32_t paths = static_cast<std::uint32_t>(state.mis.light_paths);
+    const std::uint32_t paths = state.light_paths;
     const std::uint32_t blocks = (paths + kLightBlock - 1) / kLightBlock;
     // Kept from pass to pass with their capacity: no page faults for memory just freed.
     auto &block_vertices = state.block_vertices;
@@ -151,7 +151,7 @@ void VcmIntegrator::trace_light_paths(const PassInputs &in, std::uint32_t pass, 
             state.path_start[path + 1] = state.path_start[path] + count;
             ++path;
         }
-        state.vertices.insert(state.vertices.end(), block_vertices[b].begin(), block_vertices[b].end());
+        for (const LightVertex &v : block_vertices[b]) state.vertices.push_back(&v);
     }
     // Splats in subpath order: the sum is the same for any thread count.
     state.splat.assign(in.camera.width() * static_cast<std::size_t>(in.camera.height()), Rgb());
@@ -164,22 +164,24 @@ void VcmIntegrator::estimate_pass(const PassInputs &in, std::uint32_t pass, Pass
     if (!state_) state_ = std::make_shared<PassState>();
     PassState &state = *state_;
     state.radius = merge_radius(in, pass);
-    state.mis = MisFactors::make(state.radius, pixels, connects(), merges());
+    state.light_paths = static_cast<std::uint32_t>(light_subpaths_per_pass(pixels));
+    state.mis = MisFactors::make(state.radius, state.light_paths, connects(), merges());
     state.pixel_area = in.camera.pixel_size_at_unit_distance() * in.camera.pixel_size_at_unit_distance();
     state.max_length = in.settings.max_depth + 1;
     state.light_tracing = connects() && !in.camera.is_thin_lens();
-    allocate_or_fail("the light subpaths of " + std::to_string(pixels) + " pixels",
-                     std::uint64_t(pixels) * (sizeof(LightVertex) * 2 + sizeof(Rgb) * 2 + 16),
+    allocate_or_fail(std::to_string(state.light_paths) + " light subpaths",
+                     std::uint64_t(state.light_paths) * (sizeof(LightVertex) * 2 + 16) +
+                         std::uint64_t(pixels) * sizeof(Rgb),
                      [&] { trace_light_paths(in, pass, state); });
     if (in.cancelled()) return;
     if (merges()) {
         state.points.resize(state.vertices.size());
-        for (std::size_t k = 0; k < state.points.size(); ++k) state.points[k] = state.vertices[k].sp.p;
+        for (std::size_t k = 0; k < state.points.size(); ++k) state.points[k] = state.vertices[k]->sp.p;
         state.grid.build(state.points, state.radius);
         const std::vector<std::uint32_t> &order = state.grid.order();
         state.merge_records.resize(order.size());
         for (std::size_t k = 0; k < order.size(); ++k) {
-            const LightVertex &v = state.vertices[order[k]];
+            const LightVertex &v = *state.vertices[order[k]];
             state.merge_records[k] = {v.sp.frame.to_world(v.sp.wo_local), v.throughput, v.mis.dvcm, v.mis.dvm,
                                       v.path_length};
         }
@@ -187,7 +189,7 @@ void VcmIntegrator::estimate_pass(const PassInputs &in, std::uint32_t pass, Pass
     out.radiance.assign(pixels, Rgb());
     out.merges.assign(pixels, 0);
     out.radius = state.radius;
-    out.light_paths = pixels;
+    out.light_paths = state.light_paths;
     in.context.run([&] {
         tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, pixels, 64), [&](const auto &range) {
             if (in.cancelled()) return;

@@ -3,10 +3,10 @@
 // path sampling), modes "vcm", "bpt" (connections only: bidirectional path tracing) and "vm"
 // (merging only: progressive photon mapping on light subpaths).
 //
-// A pass traces one light subpath per pixel (L = pixels), stores its non-specular vertices and
-// connects each to the camera (light tracing); then one camera subpath per pixel, which at
-// each non-specular vertex takes a sample on a light (next event), connects to every vertex of
-// the light subpath of the same index, and merges with the light vertices within the pass's
+// A pass traces L light subpaths, one per pixel up to a cap (light_subpaths_per_pass), stores
+// their non-specular vertices and connects each to the camera (light tracing); then one camera
+// subpath per pixel, which at each non-specular vertex takes a sample on a light (next event),
+// connects to every vertex of light subpath (pixel mod L), and merges with the light vertices within the pass's
 // radius r_i = r_1 (i + 1)^((alpha - 1) / 2) (Knaus and Zwicker 2011's schedule, so that
 // passes stand alone). Emission the camera subpath hits is counted too. All of it is weighted
 // by the balance heuristic (vcm_mis.h). Each pass is an unbiased estimate apart from merging's

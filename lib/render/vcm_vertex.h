@@ -25,10 +25,13 @@ struct VcmIntegrator::LightVertex {
 struct VcmIntegrator::PassState {
     MisFactors mis;
     double radius = 0;
-    double pixel_area = 0;      // of one pixel on the plane at unit distance along the view axis
-    int max_length = 0;         // segments of a full path: max_depth scattering vertices + 1
-    bool light_tracing = false; // light vertices connect to the camera (not through a thin lens)
-    std::vector<LightVertex> vertices;
+    double pixel_area = 0;         // of one pixel on the plane at unit distance along the view axis
+    int max_length = 0;            // segments of a full path: max_depth scattering vertices + 1
+    bool light_tracing = false;    // light vertices connect to the camera (not through a thin lens)
+    std::uint32_t light_paths = 0; // light subpaths this pass (light_subpaths_per_pass)
+    // The stored light vertices live in block_vertices; vertices[k] points at the k-th in
+    // subpath order (one copy of them, not two: they are most of the pass's memory).
+    std::vector<const LightVertex *> vertices;
     std::vector<std::uint32_t> path_start; // light subpath i's vertices: [path_start[i], path_start[i + 1])
     LightVertexGrid grid;                  // over the vertices, when merging
     std::vector<Rgb> splat;                // per pixel: light tracing's sum

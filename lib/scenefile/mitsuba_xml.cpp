@@ -690,7 +690,8 @@ private:
         if (type == "sppm" || type == "ppm") {
             out["type"] = value["type"];
         } else {
-            warn(node, source, "integrator '" + type + "' read as \"render this scene\": libppm renders it with SPPM");
+            warn(node, source,
+                 "integrator '" + type + "' read as \"render this scene\": libppm renders it in its default mode, vcm");
         }
         // Mitsuba's max_depth counts the emitted vertex too; -1 is unlimited.
         if (value.isMember("max_depth")) {

@@ -8,10 +8,12 @@
 #include "progress.h"
 #include "signals.h"
 
+#include <algorithm>
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
+#include <iterator>
 #include <mutex>
 #include <new>
 #include <string>
@@ -267,7 +269,14 @@ int render(const Options &options, SignalWatcher &signals) {
         if (options.cropped())
             std::fprintf(stderr, " (crop %u,%u,%u,%u)", options.crop[0], options.crop[1], options.crop[2],
                          options.crop[3]);
-        std::fprintf(stderr, ", %s, %lld photons/pass, ", mode, static_cast<long long>(photons_per_pass));
+        // The bidirectional modes trace one light subpath per pixel, at most 2^18 (ppm.h).
+        const std::string bidirectional_modes[] = {"vcm", "bpt", "vm"};
+        if (std::find(std::begin(bidirectional_modes), std::end(bidirectional_modes), mode) !=
+            std::end(bidirectional_modes))
+            std::fprintf(stderr, ", %s, %lld light subpaths/pass, ", mode,
+                         static_cast<long long>(std::min<int64_t>(width * height, int64_t(1) << 18)));
+        else
+            std::fprintf(stderr, ", %s, %lld photons/pass, ", mode, static_cast<long long>(photons_per_pass));
         if (options.partial_render()) {
             std::fprintf(stderr, "passes %llu-%llu of %llu (%zu to render) -> partial %s",
                          static_cast<unsigned long long>(range_first), static_cast<unsigned long long>(range_end - 1),

@@ -43,8 +43,8 @@ class Renderer(Handle):
     height=48, seed=3)``.
 
     Settings (keyword arguments here, or :meth:`set` / :meth:`get`; see ppm.h):
-    ``mode`` ("sppm" | "ppm" | "pppm" | "vcm" | "bpt" | "vm"; the last four are pass-independent,
-    see :class:`libppm.Partial`),
+    ``mode`` ("vcm", the default, | "sppm" | "ppm" | "pppm" | "bpt" | "vm"; all but sppm and ppm
+    are pass-independent, see :class:`libppm.Partial`),
     ``photons_per_pass``, ``alpha``, ``initial_radius``,
     ``initial_radius_pixels``, ``max_depth``, ``seed``, ``hit_point_search``
     ("grid" | "kdtree"), ``direct_lighting`` (1: shadow rays, 0: photons only). mode, seed,

@@ -34,7 +34,8 @@ def test_texture_replaces_the_reflectance(tmp_path):
         scene.add_point_light((0, 0, 1), 2.0)
         scene.commit()
         camera = libppm.Camera(origin=(0, 0, 3), target=(0, 0, 0), fov=10, width=5, height=5)
-        with libppm.Renderer(scene, camera, photons_per_pass=1000) as r:
+        # sppm: its shadow rays give the direct light in two passes
+        with libppm.Renderer(scene, camera, mode="sppm", photons_per_pass=1000) as r:
             centre = r.render(2)[2, 2]
     np.testing.assert_allclose(centre, srgb_to_linear(texel) / math.pi * 2.0, rtol=0.01, atol=1e-6)
 
@@ -113,7 +114,8 @@ def plane_under_light(build):
         scene.add_light("point", position=(0, 0, 1), intensity=2.0)
         scene.commit()
         camera = libppm.Camera(origin=(0, 0, 3), target=(0, 0, 0), fov=10, width=5, height=5)
-        with libppm.Renderer(scene, camera, photons_per_pass=1000) as r:
+        # sppm: its shadow rays give the direct light in two passes
+        with libppm.Renderer(scene, camera, mode="sppm", photons_per_pass=1000) as r:
             return r.render(2)[2, 2]
 
 

@@ -56,7 +56,7 @@ def test_centre_pixel_by_shadow_rays(plane):
     # One jittered shadow-ray sample per pixel and pass. Off centre the radiance changes by up
     # to 20 % across a pixel, so a pixel's mean of n samples is off by ~6 %/sqrt(n) (1 sigma);
     # 256 passes make the 2 % below a 5-sigma bound. Photons add nothing here (one plane).
-    with libppm.Renderer(plane, camera(), photons_per_pass=1000, direct_lighting=1) as r:
+    with libppm.Renderer(plane, camera(), mode="sppm", photons_per_pass=1000, direct_lighting=1) as r:
         image = r.render(256)
         assert image.shape == (SIZE, SIZE, 3) and image.dtype == np.float32
         c = SIZE // 2
@@ -69,7 +69,7 @@ def test_centre_pixel_by_shadow_rays(plane):
 
 
 def test_photons_only_converge_to_the_same_answer(plane):
-    with libppm.Renderer(plane, camera(), photons_per_pass=50000, direct_lighting=0, seed=1) as r:
+    with libppm.Renderer(plane, camera(), mode="sppm", photons_per_pass=50000, direct_lighting=0, seed=1) as r:
         image = r.render(16)
         c = SIZE // 2
         block = image[c - 4:c + 5, c - 4:c + 5].mean()
@@ -79,7 +79,9 @@ def test_photons_only_converge_to_the_same_answer(plane):
 
 
 def test_layers_properties_and_settings(plane):
-    with libppm.Renderer(plane, camera(16), photons_per_pass=1000) as r:
+    with libppm.Renderer(plane, camera(16)) as r:
+        assert r.get("mode") == "vcm"  # the default
+    with libppm.Renderer(plane, camera(16), mode="sppm", photons_per_pass=1000) as r:
         assert (r.width, r.height, r.passes, r.photons_emitted) == (16, 16, 0, 0)
         assert not r.image().any()  # nothing rendered yet
         r.set("alpha", 0.5)
@@ -149,7 +151,7 @@ def test_progress_callback_can_stop(plane):
         assert 0 <= stats["last_search_build_seconds"] <= stats["last_eye_pass_seconds"]
         return index < 2  # False after the third pass
 
-    with libppm.Renderer(plane, camera(8), photons_per_pass=500) as r:
+    with libppm.Renderer(plane, camera(8), mode="sppm", photons_per_pass=500) as r:
         r.render(10, progress=progress)
         assert r.passes == 3
         assert seen == [(0, 1, 500), (1, 2, 1000), (2, 3, 1500)]
