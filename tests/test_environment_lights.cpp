@@ -276,7 +276,8 @@ Picture render(ppm_scene scene, const double origin[3], const double target[3], 
     assert_ppm_ok(ppm_renderer_create(scene, &camera, &r));
     assert_ppm_ok(ppm_renderer_set_string(r, "mode", mode));
     assert_ppm_ok(ppm_renderer_set_int(r, "direct_lighting", direct_lighting));
-    assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", photons));
+    if (std::strcmp(mode, "vcm") != 0) // vcm: its automatic count, one light subpath per pixel
+        assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", photons));
     for (int i = 0; i < passes; ++i) assert_ppm_ok(ppm_render_pass(r));
     Picture p;
     p.w = p.h = size;

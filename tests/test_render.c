@@ -480,7 +480,7 @@ static void settings_and_argument_errors(void **state) {
     const double origin[3] = {0, 0, 0}, target[3] = {0, 0, 1};
     ppm_renderer r = make_renderer(f->scene, origin, target, 60, 8, 4);
     assert_ppm_error(ppm_renderer_set_int(r, "photons", 5), PPM_ERROR_INVALID_ARGUMENT, "unknown");
-    assert_ppm_error(ppm_renderer_set_int(r, "photons_per_pass", 0), PPM_ERROR_INVALID_ARGUMENT, "photons_per_pass");
+    assert_ppm_error(ppm_renderer_set_int(r, "photons_per_pass", -1), PPM_ERROR_INVALID_ARGUMENT, "photons_per_pass");
     assert_ppm_error(ppm_renderer_set_double(r, "alpha", 1.5), PPM_ERROR_INVALID_ARGUMENT, "alpha");
     assert_ppm_error(ppm_renderer_set_double(r, "alpha", NAN), PPM_ERROR_INVALID_ARGUMENT, "finite");
     assert_ppm_error(ppm_renderer_set_string(r, "mode", "bdpt"), PPM_ERROR_INVALID_ARGUMENT, "sppm");

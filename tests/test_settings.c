@@ -175,6 +175,31 @@ static void test_renderer_read_only_values(void **state) {
     ppm_renderer_release(r);
 }
 
+/* photons_per_pass 0 (the default) is automatic: one light subpath per pixel in vcm, a count
+ * from the pixels in sppm; "paths_per_pass" reads what a pass traces. */
+static void test_automatic_paths_per_pass(void **state) {
+    fixture *f = *state;
+    ppm_renderer r = sphere_renderer(f->scene);
+    int64_t n = -1, emitted = -1;
+    assert_ppm_ok(ppm_renderer_get_int(r, "photons_per_pass", &n));
+    assert_int_equal(n, 0);
+    assert_ppm_ok(ppm_renderer_get_int(r, "paths_per_pass", &n));
+    assert_int_equal(n, 8 * 6); /* vcm */
+    assert_ppm_error(ppm_renderer_set_int(r, "paths_per_pass", 5), PPM_ERROR_INVALID_ARGUMENT, "read-only");
+    assert_ppm_error(ppm_renderer_set_int(r, "photons_per_pass", -1), PPM_ERROR_INVALID_ARGUMENT, "0 for automatic");
+    assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", 500));
+    assert_ppm_ok(ppm_renderer_get_int(r, "paths_per_pass", &n));
+    assert_int_equal(n, 500);
+    assert_ppm_ok(ppm_renderer_set_string(r, "mode", "sppm"));
+    assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", 0));
+    assert_ppm_ok(ppm_renderer_get_int(r, "paths_per_pass", &n));
+    assert_true(n >= 8 * 6);
+    assert_ppm_ok(ppm_render_pass(r));
+    assert_ppm_ok(ppm_renderer_get_int(r, "photons_emitted", &emitted));
+    assert_int_equal(emitted, n);
+    ppm_renderer_release(r);
+}
+
 static void test_renderer_typed_settings(void **state) {
     fixture *f = *state;
     ppm_renderer r = sphere_renderer(f->scene);
@@ -246,6 +271,7 @@ int main(void) {
         TEST(test_scene_int_null_and_unknown),
         TEST(test_scene_set_int_takes_effect_at_commit),
         TEST(test_renderer_read_only_values),
+        TEST(test_automatic_paths_per_pass),
         TEST(test_renderer_typed_settings),
         TEST(test_scene_file_values),
     };

@@ -197,7 +197,8 @@ std::vector<float> render(ppm_scene scene, const ppm_camera &camera, const char 
     assert_ppm_ok(ppm_renderer_set_double(r, "initial_radius", initial_radius));
     assert_ppm_ok(ppm_renderer_set_string(r, "mode", mode));
     assert_ppm_ok(ppm_renderer_set_int(r, "seed", seed));
-    assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", 20000));
+    // The photon modes' count; the bidirectional ones keep theirs, one light subpath per pixel.
+    if (std::strcmp(mode, "sppm") == 0) assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", 20000));
     for (int i = 0; i < passes; ++i) assert_ppm_ok(ppm_render_pass(r));
     std::vector<float> rgb(3 * camera.width * camera.height);
     assert_ppm_ok(ppm_renderer_get_layer(r, "radiance", rgb.data(), rgb.size()));
@@ -324,10 +325,7 @@ void same_bits_for_any_threads_and_split_passes(void **state) {
     ppm_renderer a = nullptr, b = nullptr;
     assert_ppm_ok(ppm_renderer_create(f->scene, &camera, &a));
     assert_ppm_ok(ppm_renderer_create(f->scene, &camera, &b));
-    for (ppm_renderer r : {a, b}) {
-        assert_ppm_ok(ppm_renderer_set_string(r, "mode", "vcm"));
-        assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", 20000));
-    }
+    for (ppm_renderer r : {a, b}) assert_ppm_ok(ppm_renderer_set_string(r, "mode", "vcm"));
     assert_ppm_ok(ppm_render_pass_index(a, 0));
     assert_ppm_ok(ppm_render_pass_index(a, 2));
     assert_ppm_ok(ppm_render_pass_index(b, 3));
@@ -359,7 +357,26 @@ void thin_lens_furnace(void **state) {
     }
 }
 
-// A film of more pixels than the light subpaths of a pass (light_subpaths_per_pass): camera
+// The automatic count of paths per pass (photons_per_pass 0): one light subpath per pixel up
+// to the cap in the bidirectional modes, kPhotonsPerPixel photon paths per pixel within the
+// bounds in the photon modes; an explicit count wins in every mode.
+void automatic_paths_per_pass(void **) {
+    RenderSettings s;
+    assert_int_equal(s.photons_per_pass, 0);
+    assert_true(s.mode == RenderSettings::Mode::Vcm);
+    assert_int_equal(s.paths_per_pass(1000), 1000);
+    assert_int_equal(s.paths_per_pass(std::uint64_t(1) << 24), kMaxLightSubpathsPerPass);
+    s.mode = RenderSettings::Mode::Sppm;
+    assert_int_equal(s.paths_per_pass(100000), kPhotonsPerPixel * 100000);
+    assert_int_equal(s.paths_per_pass(10), kMinAutoPhotons);
+    assert_int_equal(s.paths_per_pass(std::uint64_t(1) << 28), kMaxAutoPhotons);
+    s.photons_per_pass = 777;
+    assert_int_equal(s.paths_per_pass(100000), 777);
+    s.mode = RenderSettings::Mode::Bpt;
+    assert_int_equal(s.paths_per_pass(100000), 777);
+}
+
+// A film of more pixels than the light subpaths of a pass (RenderSettings::paths_per_pass): camera
 // subpaths past the last light subpath connect to light subpath (pixel mod count), and the
 // weights count the light subpaths traced. The furnace must stay at Le / (1 - albedo) on the
 // rows whose camera subpaths share light subpaths too.
@@ -394,6 +411,7 @@ int main() {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(mis_weights_sum_to_one),
         cmocka_unit_test(mis_weights_sum_to_one_without_merging),
+        cmocka_unit_test(automatic_paths_per_pass),
         cmocka_unit_test_setup_teardown(furnace_in_every_mode, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(point_light_over_a_plane, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(modes_agree_with_sppm, scene_fixture_setup, scene_fixture_teardown),

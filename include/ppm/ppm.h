@@ -642,14 +642,18 @@ PPM_API void ppm_renderer_release(ppm_renderer renderer);
  *                           only, so passes render apart and merge; see partial renders),
  *                           "vcm" (vertex connection and merging: bidirectional path
  *                           tracing and photon merging under multiple importance
- *                           sampling, one camera subpath per pixel and pass and as many
- *                           light subpaths up to 2^18; no light tracing through a thin
- *                           lens), "bpt" (its
+ *                           sampling, one camera subpath per pixel and pass, light
+ *                           subpaths as photons_per_pass says; no light tracing
+ *                           through a thin lens), "bpt" (its
  *                           connections only) or
  *                           "vm" (its merging only); vcm, bpt and vm are pass-independent
- *                           like pppm and do not use photons_per_pass or direct_lighting
+ *                           like pppm and do not use direct_lighting
  *                                                                              default "vcm"
- *   "photons_per_pass"      int    1 .. 2^31                                  default 200000
+ *   "photons_per_pass"      int    photon paths (photon modes) or light subpaths
+ *                           (vcm, bpt, vm) per pass, 1 .. 2^31; 0 = automatic:
+ *                           6 photon paths per pixel within [10^4, 2^22], or one
+ *                           light subpath per pixel up to 2^18 (read "paths_per_pass")
+ *                                                                              default 0
  *   "alpha"                 double radius reduction in (0, 1]                 default 2/3
  *   "initial_radius"        double scene units; 0 = automatic                 default 0
  *   "initial_radius_pixels" double automatic radius in pixel footprints > 0   default 1
@@ -665,7 +669,8 @@ PPM_API void ppm_renderer_release(ppm_renderer renderer);
  * (INVALID_OPERATION), in the pass-independent modes ("pppm", "vcm", "bpt", "vm")
  * photons_per_pass, alpha and max_depth too; unknown
  * keys, wrong types and values out of range are INVALID_ARGUMENT. Read-only ints: "passes",
- * "photons_emitted", "width", "height", "lights" (the light sources photons leave: point,
+ * "photons_emitted", "paths_per_pass" (the paths a pass traces: photons_per_pass, or its
+ * automatic count for this film and mode), "width", "height", "lights" (the light sources photons leave: point,
  * spot and area lights; 0 renders black); read-only doubles: "last_eye_pass_seconds",
  * "last_photon_pass_seconds" (wall clock), and "last_search_build_seconds", the part of the
  * eye pass spent building the hit point search. Thread safety: not during ppm_render_pass

@@ -55,6 +55,8 @@ bool read_only_int(const ppm::Renderer &r, const std::string &key, int64_t *out)
         *out = static_cast<int64_t>(r.passes());
     else if (key == "photons_emitted")
         *out = static_cast<int64_t>(r.photons_emitted());
+    else if (key == "paths_per_pass")
+        *out = static_cast<int64_t>(r.paths_per_pass());
     else if (key == "width")
         *out = r.width();
     else if (key == "height")

@@ -186,10 +186,9 @@ Partial *Partial::parse(const char *data, std::size_t size, const std::string &o
     if (pass_total > kPassIndexLimit) corrupt(origin, "a total of " + std::to_string(pass_total) + " passes");
     const std::uint64_t passes = pass_set.count();
     if (passes == 0) corrupt(origin, "no pass");
-    // pppm traces photons_per_pass photons a pass, the bidirectional modes one light subpath per
-    // pixel up to a cap.
+    // The identity holds the paths each pass traced (photons_per_pass resolved: paths_per_pass).
     const bool bidirectional = identity.mode != static_cast<std::uint32_t>(RenderSettings::Mode::Pppm);
-    const std::uint64_t per_pass = bidirectional ? light_subpaths_per_pass(pixels) : identity.photons_per_pass;
+    const std::uint64_t per_pass = identity.photons_per_pass;
     if (emitted != passes * per_pass)
         corrupt(origin, std::to_string(emitted) + (bidirectional ? " light subpaths in " : " photons emitted in ") +
                             std::to_string(passes) + " passes of " + std::to_string(per_pass));

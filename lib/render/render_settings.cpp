@@ -5,6 +5,7 @@
 #include "core/suggest.h"
 #include "math/limits.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace ppm {
@@ -67,8 +68,8 @@ void require_not_started_in_pppm(const std::string &key, RenderSettings::Mode mo
 void RenderSettings::set_int(const std::string &key, std::int64_t value, bool started) {
     if (key == "photons_per_pass") {
         require_not_started_in_pppm(key, mode, started);
-        if (value < 1 || value > kMaxPhotonsPerPass)
-            invalid_argument("photons_per_pass must be in 1 .. 2^31, not " + std::to_string(value));
+        if (value < 0 || value > kMaxPhotonsPerPass)
+            invalid_argument("photons_per_pass must be in 1 .. 2^31, or 0 for automatic, not " + std::to_string(value));
         photons_per_pass = static_cast<std::uint64_t>(value);
     } else if (key == "max_depth") {
         require_not_started_in_pppm(key, mode, started);
@@ -173,6 +174,12 @@ std::string RenderSettings::get_string(const std::string &key) const {
     if (key == "mode") return mode_name(mode);
     if (key == "hit_point_search") return search == Search::Grid ? "grid" : "kdtree";
     unknown(key, "string");
+}
+
+std::uint64_t RenderSettings::paths_per_pass(std::uint64_t pixels) const {
+    if (photons_per_pass > 0) return photons_per_pass;
+    if (is_bidirectional(mode)) return std::min(pixels, kMaxLightSubpathsPerPass);
+    return std::clamp(kPhotonsPerPixel * pixels, kMinAutoPhotons, kMaxAutoPhotons);
 }
 
 const char *RenderSettings::mode_name(Mode mode) {

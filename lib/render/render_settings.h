@@ -14,9 +14,9 @@
 // |                    |        |         | merging only (vcm_integrator.h); pass-independent.  |
 // |                    |        |         | vcm is the default: the least error at equal time   |
 // |                    |        |         | (docs/bench/converge.md)                            |
-// | photons_per_pass   | int    | 200000  | photon paths traced per pass, 1 .. 2^31 (the        |
-// |                    |        |         | bidirectional modes: one light subpath per pixel,   |
-// |                    |        |         | light_subpaths_per_pass)                            |
+// | photons_per_pass   | int    | 0       | photon paths (photon modes) or light subpaths       |
+// |                    |        |         | (bidirectional modes) per pass, 1 .. 2^31; 0 =      |
+// |                    |        |         | automatic, from the pixel count: paths_per_pass     |
 // | alpha              | double | 2/3     | radius reduction, in (0, 1]                         |
 // | initial_radius     | double | 0       | gather radius in scene units; 0 = automatic:        |
 // |                    |        |         | initial_radius_pixels pixel footprints at each      |
@@ -50,13 +50,16 @@ namespace ppm {
 constexpr std::int64_t kMaxPhotonsPerPass = std::int64_t(1) << 31;
 constexpr int kMaxDepthLimit = 1000;
 
-// The bidirectional modes trace one light subpath per pixel and pass, at most this many: the
-// stored vertices take about 2 KB per subpath in a closed room, so the cap bounds them to
-// ~ 0.5 GB at any film size. Camera subpath p connects to light subpath p mod the count.
+// The automatic photons_per_pass (RenderSettings::paths_per_pass).
+// Bidirectional modes: one light subpath per pixel and pass, at most this many: the stored
+// vertices take about 2 KB per subpath in a closed room, so the cap bounds them to ~ 0.5 GB
+// at any film size. Camera subpath p connects to light subpath p mod the count.
 constexpr std::uint64_t kMaxLightSubpathsPerPass = std::uint64_t(1) << 18;
-inline std::uint64_t light_subpaths_per_pass(std::uint64_t pixels) {
-    return pixels < kMaxLightSubpathsPerPass ? pixels : kMaxLightSubpathsPerPass;
-}
+// Photon modes: this many photon paths per pixel, so that the eye pass (one camera path per
+// pixel) and the photon pass keep the same share of a pass at any film size; the count the
+// equal-time benchmark chose (docs/bench/converge.md), within the bounds below.
+constexpr std::uint64_t kPhotonsPerPixel = 6;
+constexpr std::uint64_t kMinAutoPhotons = 10000, kMaxAutoPhotons = std::uint64_t(1) << 22;
 
 struct RenderSettings {
     // The numbers are what checkpoints record. Vcm, Bpt and Vm are the bidirectional modes
@@ -65,7 +68,7 @@ struct RenderSettings {
     enum class Search { Grid, KdTree };
 
     Mode mode = Mode::Vcm;
-    std::uint64_t photons_per_pass = 200000;
+    std::uint64_t photons_per_pass = 0; // 0: automatic (paths_per_pass)
     double alpha = 2.0 / 3.0;
     double initial_radius = 0;
     double initial_radius_pixels = 1;
@@ -79,6 +82,12 @@ struct RenderSettings {
     // of the projected hemisphere). Narrower lobes (Mitsuba's default roughconductor alpha 0.1
     // among them) are continued, which is unbiased and cheap.
     double glossy_gather_alpha = 0.2;
+
+    // The paths a pass traces on a film of `pixels` pixels: photons_per_pass, or when that is
+    // 0 kPhotonsPerPixel photon paths per pixel within [kMinAutoPhotons, kMaxAutoPhotons] in
+    // the photon modes, one light subpath per pixel up to kMaxLightSubpathsPerPass in the
+    // bidirectional ones.
+    std::uint64_t paths_per_pass(std::uint64_t pixels) const;
 
     // Set one setting from its key; `started` is whether a pass has run. Throws ppm::Error:
     // INVALID_ARGUMENT for an unknown key, a key of another type or a value out of range
@@ -100,6 +109,7 @@ struct RenderSettings {
     // can be rendered apart and merged (partial renders), and every pass must share the
     // settings fixed in pppm mode.
     static bool is_pass_independent(Mode mode) { return mode != Mode::Sppm && mode != Mode::Ppm; }
+    static bool is_bidirectional(Mode mode) { return mode == Mode::Vcm || mode == Mode::Bpt || mode == Mode::Vm; }
 };
 
 } // namespace ppm

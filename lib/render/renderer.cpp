@@ -33,7 +33,9 @@ Renderer::Renderer(Scene &scene, const SceneShading &shading, const CameraSettin
 Renderer::~Renderer() { scene_->release(); }
 
 PassInputs Renderer::pass_inputs() const {
-    return PassInputs{scene_->context(), render_scene_, camera_, settings_, cancel_requested_, flux_scale()};
+    pass_settings_ = settings_;
+    pass_settings_.photons_per_pass = paths_per_pass();
+    return PassInputs{scene_->context(), render_scene_, camera_, pass_settings_, cancel_requested_, flux_scale()};
 }
 
 Integrator &Renderer::integrator() {
@@ -114,7 +116,7 @@ void Renderer::run_pass(std::uint64_t index) {
     const double eye_seconds = seconds_since(eye_start);
 
     const auto photon_start = std::chrono::steady_clock::now();
-    photon_tracer_.trace_pass(scene_->context(), render_scene_, settings_, pass, estimator_, cancel_requested_);
+    photon_tracer_.trace_pass(scene_->context(), render_scene_, pass_settings_, pass, estimator_, cancel_requested_);
     if (cancelled()) {
         estimator_.discard_photons();
         discard();
@@ -123,9 +125,9 @@ void Renderer::run_pass(std::uint64_t index) {
     last_eye_seconds_ = eye_seconds;
     last_search_build_seconds_ = build_seconds;
     if (mode.pass_independent())
-        film_.commit_independent_pass(scene_->context(), estimator_, index, settings_.photons_per_pass);
+        film_.commit_independent_pass(scene_->context(), estimator_, index, pass_settings_.photons_per_pass);
     else
-        film_.commit_pass(scene_->context(), estimator_, settings_.alpha, settings_.photons_per_pass);
+        film_.commit_pass(scene_->context(), estimator_, settings_.alpha, pass_settings_.photons_per_pass);
 }
 
 } // namespace ppm

@@ -56,6 +56,10 @@ public:
 
     Context &context() const { return scene_->context(); }
     RenderSettings &settings() { return settings_; }
+    // The paths a pass traces: photons_per_pass, or the automatic count for this film.
+    std::uint64_t paths_per_pass() const {
+        return settings_.paths_per_pass(static_cast<std::uint64_t>(camera_.width()) * camera_.height());
+    }
     bool started() const { return film_.passes() > 0; }
 
     // One pass. Throws ppm::Error: CANCELLED when cancel() was called before or during it
@@ -105,7 +109,7 @@ private:
     void run_pass(std::uint64_t index); // under pass_mutex_
     void require_pass_independent(const char *what) const;
     void load_partial_checkpoint(const std::string &path, const std::string &bytes);
-    PassInputs pass_inputs() const;
+    PassInputs pass_inputs() const; // refreshes pass_settings_
     // The integrator of the current mode (made anew while the mode may still change).
     Integrator &integrator();
     double flux_scale() const; // for the FluxAccumulator
@@ -123,6 +127,9 @@ private:
     Camera camera_;
     std::size_t material_count_, point_light_count_; // of the scene's shading, for scene_hash()
     RenderSettings settings_;
+    // What integrators see: settings_ with photons_per_pass resolved, made by pass_inputs()
+    // (which the pass mutex or the checkpoint load's serialises).
+    mutable RenderSettings pass_settings_;
 
     std::unique_ptr<Integrator> integrator_;
     RenderSettings::Mode integrator_mode_ = RenderSettings::Mode::Sppm;

@@ -14,7 +14,7 @@ RenderIdentity Renderer::identity() const {
     id.direct_lighting = settings_.direct_lighting ? 1 : 0;
     id.seed = settings_.seed;
     id.initial_radius = settings_.initial_radius, id.initial_radius_pixels = settings_.initial_radius_pixels;
-    id.alpha = settings_.alpha, id.photons_per_pass = settings_.photons_per_pass;
+    id.alpha = settings_.alpha, id.photons_per_pass = paths_per_pass();
     id.max_depth = static_cast<std::uint32_t>(settings_.max_depth);
     id.glossy_gather_alpha_bits = glossy_gather_alpha_bits(settings_.glossy_gather_alpha);
     id.camera_hash = camera_hash(), id.scene_hash = scene_hash();

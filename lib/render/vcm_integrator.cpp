@@ -164,7 +164,7 @@ void VcmIntegrator::estimate_pass(const PassInputs &in, std::uint32_t pass, Pass
     if (!state_) state_ = std::make_shared<PassState>();
     PassState &state = *state_;
     state.radius = merge_radius(in, pass);
-    state.light_paths = static_cast<std::uint32_t>(light_subpaths_per_pass(pixels));
+    state.light_paths = static_cast<std::uint32_t>(in.settings.paths_per_pass(pixels));
     state.mis = MisFactors::make(state.radius, state.light_paths, connects(), merges());
     state.pixel_area = in.camera.pixel_size_at_unit_distance() * in.camera.pixel_size_at_unit_distance();
     state.max_length = in.settings.max_depth + 1;

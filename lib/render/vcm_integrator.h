@@ -3,7 +3,7 @@
 // path sampling), modes "vcm", "bpt" (connections only: bidirectional path tracing) and "vm"
 // (merging only: progressive photon mapping on light subpaths).
 //
-// A pass traces L light subpaths, one per pixel up to a cap (light_subpaths_per_pass), stores
+// A pass traces L light subpaths, one per pixel up to a cap (RenderSettings::paths_per_pass), stores
 // their non-specular vertices and connects each to the camera (light tracing); then one camera
 // subpath per pixel, which at each non-specular vertex takes a sample on a light (next event),
 // connects to every vertex of light subpath (pixel mod L), and merges with the light vertices within the pass's

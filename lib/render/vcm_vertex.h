@@ -28,7 +28,7 @@ struct VcmIntegrator::PassState {
     double pixel_area = 0;         // of one pixel on the plane at unit distance along the view axis
     int max_length = 0;            // segments of a full path: max_depth scattering vertices + 1
     bool light_tracing = false;    // light vertices connect to the camera (not through a thin lens)
-    std::uint32_t light_paths = 0; // light subpaths this pass (light_subpaths_per_pass)
+    std::uint32_t light_paths = 0; // light subpaths this pass (RenderSettings::paths_per_pass)
     // The stored light vertices live in block_vertices; vertices[k] points at the k-th in
     // subpath order (one copy of them, not two: they are most of the pass's memory).
     std::vector<const LightVertex *> vertices;

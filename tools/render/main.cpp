@@ -254,11 +254,11 @@ int render(const Options &options, SignalWatcher &signals) {
     if (!options.resume.empty()) check(ppm_renderer_load_checkpoint(renderer, options.resume.c_str()), "--resume");
     std::vector<uint64_t> todo;
     if (options.partial_render()) todo = passes_to_render(renderer, range_first, range_end);
-    int64_t passes = 0, width = 0, height = 0, photons_per_pass = 0, threads = 0;
+    int64_t passes = 0, width = 0, height = 0, paths_per_pass = 0, threads = 0;
     check(ppm_renderer_get_int(renderer, "passes", &passes));
     check(ppm_renderer_get_int(renderer, "width", &width));
     check(ppm_renderer_get_int(renderer, "height", &height));
-    check(ppm_renderer_get_int(renderer, "photons_per_pass", &photons_per_pass));
+    check(ppm_renderer_get_int(renderer, "paths_per_pass", &paths_per_pass)); // photons_per_pass, resolved
     check(ppm_context_get_int(context, "threads", &threads));
     if (threads == 0) threads = std::thread::hardware_concurrency(); // 0: all of them
     char mode[16] = "";
@@ -269,14 +269,11 @@ int render(const Options &options, SignalWatcher &signals) {
         if (options.cropped())
             std::fprintf(stderr, " (crop %u,%u,%u,%u)", options.crop[0], options.crop[1], options.crop[2],
                          options.crop[3]);
-        // The bidirectional modes trace one light subpath per pixel, at most 2^18 (ppm.h).
         const std::string bidirectional_modes[] = {"vcm", "bpt", "vm"};
-        if (std::find(std::begin(bidirectional_modes), std::end(bidirectional_modes), mode) !=
-            std::end(bidirectional_modes))
-            std::fprintf(stderr, ", %s, %lld light subpaths/pass, ", mode,
-                         static_cast<long long>(std::min<int64_t>(width * height, int64_t(1) << 18)));
-        else
-            std::fprintf(stderr, ", %s, %lld photons/pass, ", mode, static_cast<long long>(photons_per_pass));
+        const bool bidirectional = std::find(std::begin(bidirectional_modes), std::end(bidirectional_modes), mode) !=
+                                   std::end(bidirectional_modes);
+        std::fprintf(stderr, ", %s, %lld %s/pass, ", mode, static_cast<long long>(paths_per_pass),
+                     bidirectional ? "light subpaths" : "photons");
         if (options.partial_render()) {
             std::fprintf(stderr, "passes %llu-%llu of %llu (%zu to render) -> partial %s",
                          static_cast<unsigned long long>(range_first), static_cast<unsigned long long>(range_end - 1),
@@ -350,7 +347,7 @@ int render(const Options &options, SignalWatcher &signals) {
             shown_target > 0 ? per_pass * static_cast<double>(shown_target - static_cast<uint64_t>(passes)) : -1;
         if (budget > 0) eta = eta < 0 ? budget - elapsed : std::min(eta, budget - elapsed);
         progress.update(static_cast<uint64_t>(passes), shown_target,
-                        photon_seconds > 0 ? static_cast<double>(photons_per_pass) / photon_seconds : 0, elapsed, eta);
+                        photon_seconds > 0 ? static_cast<double>(paths_per_pass) / photon_seconds : 0, elapsed, eta);
 
         if (seconds_since(last_write) >= options.write_interval) {
             write_images(renderer, options);

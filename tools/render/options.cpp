@@ -122,7 +122,8 @@ void add_options(CLI::App &app, Options &o, RawOptions &raw) {
         ->check(unlisted(CLI::Range(std::int64_t(1), std::int64_t(1) << 40)))
         ->type_name("N")
         ->group(rendering);
-    app.add_option("--photons", o.photons, "photon paths per pass")
+    app.add_option("--photons", o.photons,
+                   "photon paths (light subpaths in vcm, bpt, vm) per pass\n(default automatic, from the pixel count)")
         ->check(unlisted(CLI::Range(std::int64_t(1), std::int64_t(1) << 31)))
         ->type_name("N")
         ->group(rendering);
@@ -172,7 +173,7 @@ void add_options(CLI::App &app, Options &o, RawOptions &raw) {
     app.add_option(
            "--pass-range", raw.pass_range,
            "render passes A .. B-1 of the --passes N in the\n"
-           "pass-independent mode (pppm unless --set mode=vcm,\nbpt or vm, or the scene names one); needs --partial")
+           "pass-independent mode (the scene's: vcm by default;\npppm if it names sppm or ppm); needs --partial")
         ->type_name("A:B")
         ->group(farms);
     app.add_option("--partial", o.partial,
