@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
-# Fails when a file under lib/ includes a header of a layer above its own (docs/architecture.md
-# draws the layers). Run by ctest (test "layers").
+# Fails when a file under lib/ includes a header of a room above its own, or when the headers
+# of lib/ include each other in a cycle (docs/architecture.md draws the rooms). A room is a
+# folder (integrator/vcm is a room of its own, above integrator). Run by ctest (test "layers").
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/../lib"
 
-# What each folder may include besides itself: the layers below it.
+# What each room may include besides itself: the rooms below it.
 declare -A allowed=(
   [math]=""
   [core]="math"
@@ -13,27 +14,47 @@ declare -A allowed=(
   [io]="geometry core math"
   [scene]="geometry core math"
   [photon]="core math"
-  [render]="photon scene io geometry core math"
-  [scenefile]="render photon scene io geometry core math"
-  [api]="scenefile render photon scene io geometry core math"
+  [material]="core math"
+  [camera]="core math"
+  [settings]="core math"
+  [light]="material geometry core math"
+  [shading]="light material scene photon geometry core math"
+  [film]="settings photon io core math"
+  [integrator]="film shading light material camera settings photon scene io geometry core math"
+  [integrator/vcm]="integrator film shading light material camera settings photon scene io geometry core math"
+  [renderer]="integrator/vcm integrator film shading light material camera settings photon scene io geometry core math"
+  [scenefile]="renderer film material camera settings io geometry core math"
+  [api]="scenefile renderer integrator/vcm integrator film shading light material camera settings photon scene io geometry core math"
 )
 
 status=0
-for folder in */; do
-  folder=${folder%/}
-  if [[ -z "${allowed[$folder]+set}" ]]; then
-    echo "lib/$folder/ has no place in the layers: add it to scripts/check-layers.sh and docs/architecture.md" >&2
+while IFS= read -r room; do
+  if [[ -z "${allowed[$room]+set}" ]]; then
+    echo "lib/$room/ has no place in the rooms: add it to scripts/check-layers.sh and docs/architecture.md" >&2
     status=1
     continue
   fi
   while IFS=: read -r file line text; do
-    target=$(sed -E 's/.*#include "([a-z_]+)\/.*/\1/' <<<"$text")
-    [[ "$target" == "$folder" ]] && continue
-    if [[ " ${allowed[$folder]} " != *" $target "* ]]; then
-      echo "lib/$file:$line: $folder/ may not include $target/ (${text})" >&2
+    header=$(sed -E 's/.*#include "([a-z_/]+\.h)".*/\1/' <<<"$text")
+    target=$(dirname "$header")
+    [[ "$target" == "$room" ]] && continue
+    if [[ " ${allowed[$room]} " != *" $target "* ]]; then
+      echo "lib/$room/$file:$line: $room/ may not include $target/ (${text})" >&2
       status=1
     fi
-  done < <(grep -rnE '^#include "[a-z_]+/' "$folder" --include='*.h' --include='*.cpp' || true)
-done
-((status == 0)) && echo "every include of lib/ points to its own layer or one below"
+  done < <(cd "$room" && find . -maxdepth 1 -type f \( -name '*.h' -o -name '*.cpp' \) -printf '%P\0' |
+    xargs -0 -r grep -HnE '^#include "[a-z_/]+\.h"' || true)
+done < <(find . -mindepth 1 -type d -printf '%P\n' | sort)
+
+# Include cycles among headers (inside a room too): tsort fails on a loop and names it.
+edges=$(grep -rnoE '^#include "[a-z_/]+\.h"' --include='*.h' . |
+  sed -E 's#^\./([^:]+):[0-9]+:\#include "([^"]+)"#\1 \2#')
+if ! tsort <<<"$edges" >/dev/null 2>"${TMPDIR:-/tmp}/check-layers.$$"; then
+  echo "headers of lib/ include each other in a cycle:" >&2
+  grep -v '^tsort: -: input contains a loop:' "${TMPDIR:-/tmp}/check-layers.$$" | sed 's/^tsort: /  /' >&2
+  status=1
+fi
+rm -f "${TMPDIR:-/tmp}/check-layers.$$"
+
+((status == 0)) && echo "every include of lib/ points to its own room or one below, and no headers include each other in a cycle"
 exit $status

@@ -7,8 +7,8 @@
 // <material> is five words: type (thindielectric, roughdielectric, roughplastic) distribution
 // (beckmann, ggx) alpha_u alpha_v int_ior ext_ior reflectance (one grey value) sample_visible
 // (0/1), i.e. eight tokens; <mode> is radiance or importance.
-#include "render/bsdf.h"
-#include "render/microfacet.h"
+#include "material/bsdf.h"
+#include "material/microfacet.h"
 
 #include <cstdio>
 #include <iostream>

@@ -14,8 +14,8 @@
 //  - bad input (degenerate disk, p0 == p1, bad radius, flip on a sphere, emitting patches).
 #include "api/api_support.h"
 #include "geometry/mesh_data.h"
-#include "render/render_scene.h"
 #include "scene/mesh_geometry.h"
+#include "shading/render_scene.h"
 
 #include <ppm/ppm.h>
 

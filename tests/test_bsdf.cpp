@@ -3,9 +3,9 @@
 // total internal reflection, energy balance), the Lambert pdf, sampled albedos against the
 // analytic ones, reciprocity, and the radiance/importance asymmetry of refraction.
 #include "core/error.h"
+#include "material/bsdf.h"
 #include "math/sin_cos.h"
-#include "render/bsdf.h"
-#include "render/warp.h"
+#include "math/warp.h"
 
 #include "test_support.h"
 
@@ -266,7 +266,7 @@ void diffuse_and_mirror_albedo_is_their_reflectance(void **) {
     }
 }
 
-// Coat over a diffuse base: albedo F + (1 - F) R_d (see render/bsdf.h).
+// Coat over a diffuse base: albedo F + (1 - F) R_d (see material/bsdf.h).
 void coated_albedo_is_fresnel_plus_transmitted_base(void **) {
     for (double eta : {1.5, 1.33}) {
         const Rgb base{0.9, 0.5, 0.0};

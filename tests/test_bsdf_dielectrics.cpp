@@ -5,8 +5,8 @@
 // quadrature of f cos (eval and sample agree), chi-square fits of sample() to pdf(), the
 // adjoint and generalised reciprocity of refraction, and the rough coat's tables.
 #include "core/error.h"
-#include "render/bsdf.h"
-#include "render/microfacet.h"
+#include "material/bsdf.h"
+#include "material/microfacet.h"
 
 #include "chi2.h"
 #include "test_support.h"

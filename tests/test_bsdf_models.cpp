@@ -5,9 +5,9 @@
 // quadrature of f cos (eval/pdf/sample consistency), a chi-square test of sample() against
 // pdf(), Mitsuba's named materials, the visible-point rule and the factories' validation.
 #include "core/error.h"
-#include "render/bsdf.h"
-#include "render/conductor_table.h"
-#include "render/fresnel.h"
+#include "material/bsdf.h"
+#include "material/conductor_table.h"
+#include "material/fresnel.h"
 
 #include "chi2.h"
 #include "test_support.h"

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // Look-at camera against geometry worked out by hand: where the centre and the fov edges
 // look, square pixels for any aspect ratio, the thin lens focus, and input validation.
+#include "camera/camera.h"
 #include "core/error.h"
-#include "render/camera.h"
 
 #include "test_support.h"
 

@@ -6,9 +6,9 @@
 // directional light is E cos(theta) rho / pi.
 #include "api/api_support.h"
 #include "core/error.h"
-#include "render/environment_map.h"
-#include "render/light.h"
-#include "render/texture.h"
+#include "light/environment_map.h"
+#include "light/light.h"
+#include "material/texture.h"
 
 #include <OpenImageIO/imageio.h>
 

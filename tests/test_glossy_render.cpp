@@ -6,7 +6,7 @@
 // or its paths continue through it like a mirror (above), in every mode. The materials are
 // set through the scene's internals until the generic material API registers them.
 #include "api/api_support.h"
-#include "render/bsdf.h"
+#include "material/bsdf.h"
 
 #include "api_asserts.h"
 #include "test_support.h"

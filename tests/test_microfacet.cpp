@@ -3,10 +3,10 @@
 // projected area is 1, visible normals integrate to 1 and are sampled with the density
 // pdf() claims (chi-square), G1 lies in [0, 1], and the complex Fresnel reflectance matches
 // the normal-incidence formula and the dielectric limit k = 0.
+#include "material/bsdf.h"
+#include "material/fresnel.h"
+#include "material/microfacet.h"
 #include "math/vec3.h"
-#include "render/bsdf.h"
-#include "render/fresnel.h"
-#include "render/microfacet.h"
 
 #include "chi2.h"
 #include "test_support.h"

@@ -3,8 +3,8 @@
 // the top row, lookups are bilinear between texel centres and repeat outside [0, 1); bad
 // files give clear errors.
 #include "io/obj_reader.h"
-#include "render/material.h"
-#include "render/texture.h"
+#include "material/material.h"
+#include "material/texture.h"
 
 #include "core/error.h"
 

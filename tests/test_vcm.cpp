@@ -9,8 +9,8 @@
 //  - the image is the same bits for 1 and 2 threads, and for passes split between two
 //    renderers and merged as partials; a thin lens camera works without light tracing;
 //  - a film of more pixels than the light subpaths of a pass shares them correctly.
-#include "render/render_settings.h"
-#include "render/vcm_mis.h"
+#include "integrator/vcm/vcm_mis.h"
+#include "settings/render_settings.h"
 
 #include "api_asserts.h"
 #include "test_support.h"

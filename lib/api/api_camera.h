@@ -7,7 +7,7 @@
 
 #include <ppm/ppm.h>
 
-#include "render/camera.h"
+#include "camera/camera.h"
 
 namespace ppm::api {
 

@@ -6,7 +6,7 @@
 
 #include "api/api_params.h"
 #include "api/api_support.h"
-#include "render/texture.h"
+#include "material/texture.h"
 
 #include <string>
 

@@ -7,7 +7,7 @@
 #include "api/api_params.h"
 #include "api/api_support.h"
 #include "core/suggest.h"
-#include "render/conductor_table.h"
+#include "material/conductor_table.h"
 
 #include <string>
 #include <vector>
@@ -49,7 +49,7 @@ uint32_t add_diffuse(ppm_scene_t &scene, Params &p) {
 }
 
 // The complex index of refraction of a conductor, as Mitsuba's conductor.cpp reads it: a
-// named `material` (Mitsuba's table, render/conductor_table.h) or `eta` and `k`; "none" (the
+// named `material` (Mitsuba's table, material/conductor_table.h) or `eta` and `k`; "none" (the
 // default) is eta 0, k 1: F = 1, a perfect mirror. Giving both is an error, as in Mitsuba.
 struct ConductorIndex {
     Rgb eta, k;

@@ -2,7 +2,7 @@
 // The C API of partial renders (ppm.h, "Partial renders").
 #include "api/api_renderer.h"
 #include "api/api_support.h"
-#include "render/partial.h"
+#include "film/partial.h"
 
 #include <cstring>
 

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "api/api_support.h"
-#include "render/renderer.h"
+#include "renderer/renderer.h"
 
 struct ppm_renderer_t : ppm::Renderer {
     ppm_renderer_t(ppm_scene_t &scene, const ppm::CameraSettings &camera_settings)

@@ -9,8 +9,8 @@
 #include "core/error.h"
 #include "math/limits.h"
 #include "math/vec3.h"
-#include "render/scene_shading.h"
 #include "scene/scene.h"
+#include "shading/scene_shading.h"
 
 #include <new>
 #include <string>

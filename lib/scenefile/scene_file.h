@@ -8,7 +8,7 @@
 #include <ppm/ppm.h>
 
 #include "core/ref_counted.h"
-#include "render/render_settings.h"
+#include "settings/render_settings.h"
 
 #include <map>
 #include <string>
