@@ -162,9 +162,9 @@ Partial *Partial::parse(const char *data, std::size_t size, const std::string &o
         fail(PPM_ERROR_PARSE, origin + ": corrupt or truncated partial render (the checksum does not match)");
 
     const RenderIdentity identity = get_identity(r);
-    if (identity.mode > static_cast<std::uint32_t>(RenderSettings::Mode::Vm) ||
-        !RenderSettings::is_pass_independent(static_cast<RenderSettings::Mode>(identity.mode)))
-        corrupt(origin, "mode " + std::to_string(identity.mode) + " is not a pass-independent mode");
+    const ModeTraits *mode = find_mode(identity.mode);
+    if (!mode || !mode->supports_partials)
+        corrupt(origin, "mode " + std::to_string(identity.mode) + " is not a mode of partial renders");
     const std::uint64_t pixels = std::uint64_t(identity.width) * identity.height;
     if (identity.width == 0 || identity.height == 0 || pixels > kMaxPixels)
         corrupt(origin, "image size " + std::to_string(identity.width) + " x " + std::to_string(identity.height));
@@ -187,7 +187,7 @@ Partial *Partial::parse(const char *data, std::size_t size, const std::string &o
     const std::uint64_t passes = pass_set.count();
     if (passes == 0) corrupt(origin, "no pass");
     // The identity holds the paths each pass traced (photons_per_pass resolved: paths_per_pass).
-    const bool bidirectional = identity.mode != static_cast<std::uint32_t>(RenderSettings::Mode::Pppm);
+    const bool bidirectional = mode->bidirectional;
     const std::uint64_t per_pass = identity.photons_per_pass;
     if (emitted != passes * per_pass)
         corrupt(origin, std::to_string(emitted) + (bidirectional ? " light subpaths in " : " photons emitted in ") +

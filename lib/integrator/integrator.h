@@ -1,29 +1,21 @@
 // SPDX-License-Identifier: Apache-2.0
-// An integrator mode: how a pass's camera paths make the film's slots, their direct light and
-// the hit points the photons are gathered at. The renderer runs the rest of a pass the same
-// way for every mode (photon tracing, density estimate, statistics update).
-//
-// A new mode is one file that implements Integrator and one line in integrator_registry.cpp.
+// An integrator: how a mode renders one pass into the film. A new mode is one file that
+// implements Integrator, a row of traits in settings/render_modes.cpp and a line in
+// renderer/integrator_registry.cpp.
 #pragma once
 
 #include "camera/camera.h"
 #include "core/context.h"
 #include "film/film.h"
-#include "film/pass_estimate.h"
-#include "integrator/density_estimator.h"
-#include "photon/hit_point.h"
 #include "settings/render_settings.h"
 #include "shading/render_scene.h"
 
 #include <atomic>
 #include <cstdint>
-#include <memory>
-#include <optional>
-#include <vector>
 
 namespace ppm {
 
-// What a pass's camera paths read; the film and the estimator are what they write.
+// What a pass reads; the film (and a photon mode's estimator) is what it writes.
 struct PassInputs {
     Context &context;
     const RenderScene &scene;
@@ -35,37 +27,33 @@ struct PassInputs {
     bool cancelled() const { return cancel.load(std::memory_order_relaxed); }
 };
 
+// How long a pass's parts took, for the renderer's readers (last_eye_seconds and the others).
+struct PassTimes {
+    double eye_seconds = 0;          // camera paths, with the search build (the whole pass in the bidirectional modes)
+    double search_build_seconds = 0; // the hit points' grid or tree
+    double photon_seconds = 0;       // the photon pass
+};
+
+// The one interface of every mode (pbrt-v4's and Mitsuba 3's integrators have one entry too):
+// a pass in, a committed pass in the film out. The photon modes implement it through
+// PhotonIntegrator (photon_integrator.h), the bidirectional ones through VcmIntegrator
+// (vcm/vcm_integrator.h). What the renderer needs to know of a mode beyond this is its row
+// of traits (settings/render_modes.h).
 class Integrator {
 public:
     virtual ~Integrator() = default;
 
-    // Pass `pass`: makes the film's slots if it has none (the first pass, or after a first pass
-    // that was cancelled or failed; the estimator is then reset to as many slots), sets every
-    // slot's direct light and stores its hit point in the estimator. Returns the hit points'
-    // bounds if they were measured on the way (the estimator measures them otherwise).
-    // Throws ppm::Error (OUT_OF_MEMORY for slots that do not fit). On cancel it may return
-    // early with any state that the renderer then discards.
-    virtual std::optional<HitPointBounds> eye_pass(const PassInputs &in, std::uint32_t pass, Film &film,
-                                                   DensityEstimator &estimator) = 0;
+    // Renders pass `pass` and commits it to the film: a pass-independent film (set by the
+    // renderer from the mode's traits) adds it to its pass sums, another film folds it into
+    // its statistics. Makes the film's slots first if it has none (the first pass, or after a
+    // first pass that was cancelled or failed). Returns false, with nothing committed, when it
+    // stopped because in.cancelled(); the renderer then discards the pass. Throws ppm::Error
+    // (OUT_OF_MEMORY for what does not fit).
+    virtual bool render_pass(const PassInputs &in, std::uint32_t pass, Film &film, PassTimes &times) = 0;
 
     // Makes the film's slots exactly as the first pass makes them, and nothing else (to check
     // a checkpoint's slots against).
-    virtual void make_slots(const PassInputs &in, Film &film, DensityEstimator &estimator) = 0;
-
-    // Whether each pass stands alone (its radii depend on its index only): the film then sums
-    // pass estimates (Film::commit_independent_pass) instead of carrying statistics over.
-    virtual bool pass_independent() const { return false; }
-
-    // Whether this mode makes a pass's whole estimate itself (the bidirectional modes,
-    // vcm_integrator.h), with estimate_pass instead of eye_pass and the renderer's photon pass.
-    // Such modes are pass-independent.
-    virtual bool estimates_whole_pass() const { return false; }
-    // Pass `pass`'s estimate of every pixel. Throws ppm::Error; on cancel it may return early
-    // with any estimate, which the renderer then discards.
-    virtual void estimate_pass(const PassInputs &in, std::uint32_t pass, PassEstimate &out);
+    virtual void make_slots(const PassInputs &in, Film &film) = 0;
 };
-
-// The integrator of a mode (integrator_registry.cpp).
-std::unique_ptr<Integrator> make_integrator(RenderSettings::Mode mode);
 
 } // namespace ppm

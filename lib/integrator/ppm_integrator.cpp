@@ -129,7 +129,7 @@ void PpmIntegrator::trace_fixed_points(const PassInputs &in, Film &film, Density
     film.set_slots(std::move(slot_pixel));
 }
 
-void PpmIntegrator::make_slots(const PassInputs &in, Film &film, DensityEstimator &estimator) {
+void PpmIntegrator::make_eye_slots(const PassInputs &in, Film &film, DensityEstimator &estimator) {
     // At least one slot per pixel. A failed allocation leaves no slots, so that the next pass
     // starts over.
     constexpr std::uint64_t min_slot_bytes =
@@ -147,7 +147,7 @@ void PpmIntegrator::make_slots(const PassInputs &in, Film &film, DensityEstimato
 
 std::optional<HitPointBounds> PpmIntegrator::eye_pass(const PassInputs &in, std::uint32_t pass, Film &film,
                                                       DensityEstimator &estimator) {
-    if (!film.has_slots()) make_slots(in, film, estimator);
+    if (!film.has_slots()) make_eye_slots(in, film, estimator);
     if (in.cancelled()) return std::nullopt;
     // Direct light again at the fixed points, then the points stored with this pass's radii.
     using Range = tbb::blocked_range<std::size_t>;

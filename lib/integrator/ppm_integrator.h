@@ -5,18 +5,18 @@
 // the fixed points.
 #pragma once
 
-#include "integrator/integrator.h"
+#include "integrator/photon_integrator.h"
 #include "integrator/visible_point.h"
 
 #include <vector>
 
 namespace ppm {
 
-class PpmIntegrator : public Integrator {
-public:
+class PpmIntegrator : public PhotonIntegrator {
+protected:
     std::optional<HitPointBounds> eye_pass(const PassInputs &in, std::uint32_t pass, Film &film,
                                            DensityEstimator &estimator) override;
-    void make_slots(const PassInputs &in, Film &film, DensityEstimator &estimator) override;
+    void make_eye_slots(const PassInputs &in, Film &film, DensityEstimator &estimator) override;
 
 private:
     // Rows are traced in parallel into their own lists, joined in row order so slot numbers do

@@ -15,15 +15,13 @@ namespace ppm {
 
 class PppmIntegrator : public SppmIntegrator {
 public:
-    std::optional<HitPointBounds> eye_pass(const PassInputs &in, std::uint32_t pass, Film &film,
-                                           DensityEstimator &estimator) override;
-    bool pass_independent() const override { return true; }
-
     // r_i^2 / r_0^2 above. The product is evaluated term by term (each an IEEE operation, so
     // every machine gets the same bits), in O(i).
     static double radius2_scale(std::uint64_t pass, double alpha);
 
 protected:
+    std::optional<HitPointBounds> eye_pass(const PassInputs &in, std::uint32_t pass, Film &film,
+                                           DensityEstimator &estimator) override;
     double gather_r2(const Film &, std::uint32_t, const VisiblePoint &vp) const override {
         return vp.initial_r2 * scale_;
     }

@@ -93,7 +93,7 @@ Rgb SppmIntegrator::follow_path(const PassInputs &in, CounterRng &rng, ppm_ray r
     return direct;
 }
 
-void SppmIntegrator::make_slots(const PassInputs &in, Film &film, DensityEstimator &estimator) {
+void SppmIntegrator::make_eye_slots(const PassInputs &in, Film &film, DensityEstimator &estimator) {
     const std::uint32_t pixels = film.pixel_count();
     // Each slot's state: the film's and the estimator's.
     constexpr std::uint64_t slot_bytes = Film::kSlotBytes + DensityEstimator::kSlotBytes;
@@ -109,7 +109,7 @@ void SppmIntegrator::make_slots(const PassInputs &in, Film &film, DensityEstimat
 std::optional<HitPointBounds> SppmIntegrator::eye_pass(const PassInputs &in, std::uint32_t pass, Film &film,
                                                        DensityEstimator &estimator) {
     const std::uint32_t pixels = film.pixel_count();
-    if (!film.has_slots()) make_slots(in, film, estimator);
+    if (!film.has_slots()) make_eye_slots(in, film, estimator);
     // The hit points' bounds are measured as they are stored, while they are in the cache.
     using Range = tbb::blocked_range<std::uint32_t>;
     HitPointBounds eye_bounds;

@@ -4,18 +4,16 @@
 // one slot per pixel, whose statistics (N, R, tau) carry over from pass to pass.
 #pragma once
 
-#include "integrator/integrator.h"
+#include "integrator/photon_integrator.h"
 #include "photon/random.h"
 
 namespace ppm {
 
-class SppmIntegrator : public Integrator {
-public:
+class SppmIntegrator : public PhotonIntegrator {
+protected:
     std::optional<HitPointBounds> eye_pass(const PassInputs &in, std::uint32_t pass, Film &film,
                                            DensityEstimator &estimator) override;
-    void make_slots(const PassInputs &in, Film &film, DensityEstimator &estimator) override;
-
-protected:
+    void make_eye_slots(const PassInputs &in, Film &film, DensityEstimator &estimator) override;
     // The gather radius squared of the slot's visible point this pass: its statistics'.
     virtual double gather_r2(const Film &film, std::uint32_t slot, const VisiblePoint &vp) const {
         return film.radius2(slot, vp.initial_r2);

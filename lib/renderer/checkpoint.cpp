@@ -129,7 +129,7 @@ std::uint64_t Renderer::scene_hash() const {
 
 void Renderer::save_checkpoint(const std::string &path) const {
     // A pass-independent render's checkpoint is its partial render (none before a pass).
-    if (RenderSettings::is_pass_independent(settings_.mode) && started()) {
+    if (mode_traits(settings_.mode).supports_partials && started()) {
         Owned<Partial>(make_partial())->save(path);
         return;
     }
@@ -165,7 +165,7 @@ void Renderer::load_checkpoint(const std::string &path) {
     if (started()) fail(PPM_ERROR_INVALID_OPERATION, "a checkpoint can only be loaded before the first pass");
 
     const std::string bytes = read_text_file(path);
-    if (RenderSettings::is_pass_independent(settings_.mode) && bytes.compare(0, 8, "PPMPART", 8) == 0)
+    if (mode_traits(settings_.mode).supports_partials && bytes.compare(0, 8, "PPMPART", 8) == 0)
         return load_partial_checkpoint(path, bytes);
     ByteReader r(path, "checkpoint", bytes.data(), bytes.size());
     char magic[sizeof kMagic];
@@ -233,7 +233,7 @@ void Renderer::load_checkpoint(const std::string &path) {
     // Rebuild the slots as the first pass made them (SPPM: one per pixel; PPM: the first eye
     // pass's split paths, traced again), then take the statistics.
     film_.clear_slots();
-    integrator().make_slots(pass_inputs(), film_, estimator_);
+    integrator().make_slots(pass_inputs(), film_);
     if (cancelled()) {
         film_.clear_slots();
         fail(PPM_ERROR_CANCELLED, "loading the checkpoint was cancelled");

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// The integrator of every mode. The mode's name and number (what checkpoints record) live in
-// render_settings.
-#include "integrator/integrator.h"
+// The integrator of every mode. The mode's name, number (what checkpoints record) and traits
+// are its row in settings/render_modes.cpp.
+#include "renderer/integrator_registry.h"
 
 #include "core/error.h"
 #include "integrator/ppm_integrator.h"
@@ -14,7 +14,7 @@ namespace ppm {
 namespace {
 
 struct Registration {
-    RenderSettings::Mode mode;
+    RenderMode mode;
     std::unique_ptr<Integrator> (*make)();
 };
 
@@ -24,21 +24,17 @@ template <VcmIntegrator::Techniques T> std::unique_ptr<Integrator> make_vcm() {
 }
 
 constexpr Registration kIntegrators[] = {
-    {RenderSettings::Mode::Sppm, make<SppmIntegrator>},
-    {RenderSettings::Mode::Ppm, make<PpmIntegrator>},
-    {RenderSettings::Mode::Pppm, make<PppmIntegrator>},
-    {RenderSettings::Mode::Vcm, make_vcm<VcmIntegrator::Techniques::All>},
-    {RenderSettings::Mode::Bpt, make_vcm<VcmIntegrator::Techniques::ConnectOnly>},
-    {RenderSettings::Mode::Vm, make_vcm<VcmIntegrator::Techniques::MergeOnly>},
+    {RenderMode::Sppm, make<SppmIntegrator>},
+    {RenderMode::Ppm, make<PpmIntegrator>},
+    {RenderMode::Pppm, make<PppmIntegrator>},
+    {RenderMode::Vcm, make_vcm<VcmIntegrator::Techniques::All>},
+    {RenderMode::Bpt, make_vcm<VcmIntegrator::Techniques::ConnectOnly>},
+    {RenderMode::Vm, make_vcm<VcmIntegrator::Techniques::MergeOnly>},
 };
 
 } // namespace
 
-void Integrator::estimate_pass(const PassInputs &, std::uint32_t, PassEstimate &) {
-    fail(PPM_ERROR_INVALID_OPERATION, "this mode estimates a pass from camera paths and photons, not by itself");
-}
-
-std::unique_ptr<Integrator> make_integrator(RenderSettings::Mode mode) {
+std::unique_ptr<Integrator> make_integrator(RenderMode mode) {
     for (const Registration &r : kIntegrators)
         if (r.mode == mode) return r.make();
     fail(PPM_ERROR_INVALID_ARGUMENT, "no integrator for mode " + std::to_string(static_cast<int>(mode)));

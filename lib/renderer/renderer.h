@@ -1,21 +1,18 @@
 // SPDX-License-Identifier: Apache-2.0
-// The progressive photon mapper: one render_pass() is an eye pass (visible points and their
-// direct light), a photon pass (photons traced from the lights and gathered at the visible
-// points within their radii) and the statistics update that shrinks the radii.
+// The renderer: the scene, camera and settings of one render, and its film. One
+// render_pass() is one pass of the mode's integrator (integrator/integrator.h): in the photon
+// modes an eye pass, a photon pass and the statistics update (photon_integrator.h); in the
+// bidirectional ones light and camera subpaths joined under multiple importance sampling
+// (vcm/vcm_integrator.h). What the renderer needs to know of a mode is its row of traits
+// (settings/render_modes.h).
 //
 // The parts, each with its own state:
-//  - the integrator (integrator.h; one per mode: sppm_integrator, ppm_integrator) traces the
-//    camera paths: it makes the film's slots and, every pass, their direct light and hit points;
-//  - the density estimator (density_estimator.h) holds the pass's hit points, the search over
-//    them and the flux the photons add;
-//  - the photon tracer (photon_tracer.h) traces the photon paths and deposits them;
-//  - the film (film.h) keeps the progressive statistics and gives the image layers;
+//  - the integrator of the mode (made by renderer/integrator_registry.cpp);
+//  - the film (film/film.h) keeps the progressive statistics or the pass sums and gives the
+//    image layers;
 //  - checkpoints (checkpoint.cpp) save and restore the film with the render's identity;
-//  - partial renders (partial.h, renderer_partial.cpp): the pass sums of a pass-independent
-//    render (pppm mode), saved and merged exactly; its checkpoints are partials too.
-// Direct light (light sources seen by a visible point, and emitters seen through specular
-// chains) is estimated by ray tracing in the eye pass, so photons are not stored at their
-// first hit: there they would count direct light a second time.
+//  - partial renders (film/partial.h, renderer_partial.cpp): the pass sums of a
+//    pass-independent render, saved and merged exactly; its checkpoints are partials too.
 //
 // Determinism: each camera path and each photon draws counter-based random numbers from
 // (seed, pass, index) and photon flux is summed in fixed point, so an image depends on the
@@ -30,9 +27,7 @@
 #include "core/ref_counted.h"
 #include "film/film.h"
 #include "film/partial.h"
-#include "integrator/density_estimator.h"
 #include "integrator/integrator.h"
-#include "integrator/photon_tracer.h"
 #include "scene/scene.h"
 #include "settings/render_settings.h"
 #include "shading/render_scene.h"
@@ -107,7 +102,8 @@ public:
 
 private:
     void run_pass(std::uint64_t index); // under pass_mutex_
-    void require_pass_independent(const char *what) const;
+    // Throws INVALID_OPERATION unless the mode has `trait`: "<what> needs a mode that ...".
+    void require_mode(bool ModeTraits::*trait, const char *what) const;
     void load_partial_checkpoint(const std::string &path, const std::string &bytes);
     PassInputs pass_inputs() const; // refreshes pass_settings_
     // The integrator of the current mode (made anew while the mode may still change).
@@ -132,10 +128,8 @@ private:
     mutable RenderSettings pass_settings_;
 
     std::unique_ptr<Integrator> integrator_;
-    RenderSettings::Mode integrator_mode_ = RenderSettings::Mode::Sppm;
+    RenderMode integrator_mode_ = RenderMode::Sppm;
     Film film_;
-    DensityEstimator estimator_;
-    PhotonTracer photon_tracer_;
 
     // Atomic: a progress display may read them during a pass.
     std::atomic<double> last_eye_seconds_{0}, last_photon_seconds_{0}, last_search_build_seconds_{0};

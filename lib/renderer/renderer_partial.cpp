@@ -22,7 +22,7 @@ RenderIdentity Renderer::identity() const {
 }
 
 Partial *Renderer::make_partial() const {
-    require_pass_independent("a partial render");
+    require_mode(&ModeTraits::supports_partials, "a partial render");
     PassSums sums;
     film_.with_sums([&](const PassSums &s) {
         if (s.passes().empty()) fail(PPM_ERROR_INVALID_OPERATION, "a partial render needs a completed pass");
@@ -35,7 +35,7 @@ Partial *Renderer::make_partial() const {
 void Renderer::merge_partial(const Partial &partial) {
     std::unique_lock<std::mutex> one_pass(pass_mutex_, std::try_to_lock);
     if (!one_pass.owns_lock()) fail(PPM_ERROR_INVALID_OPERATION, "a pass of this renderer is running");
-    require_pass_independent("merging a partial render");
+    require_mode(&ModeTraits::supports_partials, "merging a partial render");
     const std::string difference = partial.identity().difference(identity());
     if (!difference.empty())
         invalid_argument(partial.origin() + " is a partial of another render than this renderer's: " + difference);

@@ -58,7 +58,7 @@ void require_not_started(const std::string &key, bool started) {
 
 // Settings that every pass of a pass-independent render must share.
 void require_not_started_in_pppm(const std::string &key, RenderSettings::Mode mode, bool started) {
-    if (started && RenderSettings::is_pass_independent(mode))
+    if (started && mode_traits(mode).pass_independent)
         fail(PPM_ERROR_INVALID_OPERATION, "render setting '" + key + "' cannot change after the first pass in " +
                                               RenderSettings::mode_name(mode) + " mode");
 }
@@ -125,21 +125,20 @@ void RenderSettings::set_double(const std::string &key, double value, bool start
 void RenderSettings::set_string(const std::string &key, const std::string &value, bool started) {
     if (key == "mode") {
         require_not_started(key, started);
-        if (value == "sppm")
-            mode = Mode::Sppm;
-        else if (value == "ppm")
-            mode = Mode::Ppm;
-        else if (value == "pppm")
-            mode = Mode::Pppm;
-        else if (value == "vcm")
-            mode = Mode::Vcm;
-        else if (value == "bpt")
-            mode = Mode::Bpt;
-        else if (value == "vm")
-            mode = Mode::Vm;
-        else
-            invalid_argument("mode must be \"sppm\", \"ppm\", \"pppm\", \"vcm\", \"bpt\" or \"vm\", not \"" + value +
-                             "\"" + did_you_mean(value, {"sppm", "ppm", "pppm", "vcm", "bpt", "vm"}));
+        const ModeTraits *found = find_mode(value);
+        if (!found) {
+            std::vector<std::string> names;
+            std::string list;
+            for (const ModeTraits &m : render_modes()) {
+                names.emplace_back(m.name);
+                list += (list.empty()                            ? "\""
+                         : names.size() == render_modes().size() ? "\" or \""
+                                                                 : "\", \"") +
+                        names.back();
+            }
+            invalid_argument("mode must be " + list + "\", not \"" + value + "\"" + did_you_mean(value, names));
+        }
+        mode = found->mode;
     } else if (key == "hit_point_search") {
         if (value == "grid")
             search = Search::Grid;
@@ -178,20 +177,8 @@ std::string RenderSettings::get_string(const std::string &key) const {
 
 std::uint64_t RenderSettings::paths_per_pass(std::uint64_t pixels) const {
     if (photons_per_pass > 0) return photons_per_pass;
-    if (is_bidirectional(mode)) return std::min(pixels, kMaxLightSubpathsPerPass);
+    if (mode_traits(mode).bidirectional) return std::min(pixels, kMaxLightSubpathsPerPass);
     return std::clamp(kPhotonsPerPixel * pixels, kMinAutoPhotons, kMaxAutoPhotons);
-}
-
-const char *RenderSettings::mode_name(Mode mode) {
-    switch (mode) {
-    case Mode::Sppm: return "sppm";
-    case Mode::Ppm: return "ppm";
-    case Mode::Pppm: return "pppm";
-    case Mode::Vcm: return "vcm";
-    case Mode::Bpt: return "bpt";
-    case Mode::Vm: return "vm";
-    }
-    return "unknown";
 }
 
 } // namespace ppm

@@ -41,6 +41,8 @@
 // passes.
 #pragma once
 
+#include "settings/render_modes.h"
+
 #include <cstdint>
 #include <string>
 
@@ -62,9 +64,8 @@ constexpr std::uint64_t kPhotonsPerPixel = 6;
 constexpr std::uint64_t kMinAutoPhotons = 10000, kMaxAutoPhotons = std::uint64_t(1) << 22;
 
 struct RenderSettings {
-    // The numbers are what checkpoints record. Vcm, Bpt and Vm are the bidirectional modes
-    // (vcm_integrator.h): all techniques, connections only, merging only.
-    enum class Mode { Sppm, Ppm, Pppm, Vcm, Bpt, Vm };
+    // The modes and their traits: render_modes.h.
+    using Mode = RenderMode;
     enum class Search { Grid, KdTree };
 
     Mode mode = Mode::Vcm;
@@ -100,16 +101,12 @@ struct RenderSettings {
     double get_double(const std::string &key) const;
     std::string get_string(const std::string &key) const;
 
-    static const char *mode_name(Mode mode);
+    static const char *mode_name(Mode mode) { return mode_traits(mode).name; }
     // The name of a mode number read from a file ("unknown" for a number no mode has).
     static const char *mode_name(std::uint32_t number) {
-        return number <= static_cast<std::uint32_t>(Mode::Vm) ? mode_name(static_cast<Mode>(number)) : "unknown";
+        const ModeTraits *m = find_mode(number);
+        return m ? m->name : "unknown";
     }
-    // Modes whose passes stand alone (their radii depend on the pass index only): their passes
-    // can be rendered apart and merged (partial renders), and every pass must share the
-    // settings fixed in pppm mode.
-    static bool is_pass_independent(Mode mode) { return mode != Mode::Sppm && mode != Mode::Ppm; }
-    static bool is_bidirectional(Mode mode) { return mode == Mode::Vcm || mode == Mode::Bpt || mode == Mode::Vm; }
 };
 
 } // namespace ppm

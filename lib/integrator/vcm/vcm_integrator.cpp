@@ -9,6 +9,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <chrono>
 #include <cmath>
 
 namespace ppm {
@@ -48,11 +49,19 @@ void trace_to_camera(const PassInputs &in, const VcmPassState &state, const VcmL
 
 } // namespace
 
-std::optional<HitPointBounds> VcmIntegrator::eye_pass(const PassInputs &, std::uint32_t, Film &, DensityEstimator &) {
-    fail(PPM_ERROR_INVALID_OPERATION, "the bidirectional modes estimate whole passes (estimate_pass)");
+bool VcmIntegrator::render_pass(const PassInputs &in, std::uint32_t pass, Film &film, PassTimes &times) {
+    const auto start = std::chrono::steady_clock::now();
+    PassEstimate estimate;
+    estimate_pass(in, pass, estimate);
+    if (in.cancelled()) return false;
+    times.eye_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    times.search_build_seconds = 0;
+    times.photon_seconds = 0;
+    film.commit_estimated_pass(pass, estimate);
+    return true;
 }
 
-void VcmIntegrator::make_slots(const PassInputs &, Film &film, DensityEstimator &) {
+void VcmIntegrator::make_slots(const PassInputs &, Film &film) {
     std::vector<std::uint32_t> slot_pixel(film.pixel_count());
     for (std::uint32_t p = 0; p < film.pixel_count(); ++p) slot_pixel[p] = p;
     film.set_slots(std::move(slot_pixel));

@@ -27,6 +27,7 @@
 // off (and weighted out). Blends and masks pick one component per vertex, whose densities the weights use.
 #pragma once
 
+#include "film/pass_estimate.h"
 #include "integrator/integrator.h"
 
 namespace ppm {
@@ -39,12 +40,11 @@ public:
     enum class Techniques { All, ConnectOnly, MergeOnly };
     explicit VcmIntegrator(Techniques techniques) : techniques_(techniques) {}
 
-    std::optional<HitPointBounds> eye_pass(const PassInputs &in, std::uint32_t pass, Film &film,
-                                           DensityEstimator &estimator) override;
-    void make_slots(const PassInputs &in, Film &film, DensityEstimator &estimator) override;
-    bool pass_independent() const override { return true; }
-    bool estimates_whole_pass() const override { return true; }
-    void estimate_pass(const PassInputs &in, std::uint32_t pass, PassEstimate &out) override;
+    // Traces the pass's light and camera subpaths and commits their estimate to the
+    // (pass-independent) film.
+    bool render_pass(const PassInputs &in, std::uint32_t pass, Film &film, PassTimes &times) override;
+    // One slot per pixel.
+    void make_slots(const PassInputs &in, Film &film) override;
 
     // The merge radius of pass `pass`: initial_radius, or initial_radius_pixels pixel footprints
     // at the distance from the camera to the scene's centre, reduced by alpha.
@@ -53,6 +53,9 @@ public:
 private:
     bool connects() const { return techniques_ != Techniques::MergeOnly; }
     bool merges() const { return techniques_ != Techniques::ConnectOnly; }
+
+    // Pass `pass`'s estimate of every pixel; on cancel it may return early with any estimate.
+    void estimate_pass(const PassInputs &in, std::uint32_t pass, PassEstimate &out);
 
     void trace_light_paths(const PassInputs &in, std::uint32_t pass, VcmPassState &state) const;
     // Light subpath `index`: its stored vertices appended to `vertices`, its light tracing
