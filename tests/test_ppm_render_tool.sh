@@ -75,7 +75,7 @@ if grep -q "passes" err.txt; then fail "a pass ran before the output was refused
 # --- bad scene files: a located message and exit status 2 ----------------------------------
 expect 2 "missing.json" -- "$work/missing.json"
 printf '{\n  "shapes": [\n    {"type": "sphere", "radius": -1}\n  ]\n}\n' >negative.json
-expect 2 "negative.json:3:34: shapes[0].radius: expected a number > 0" -- negative.json
+expect 2 "negative.json:3:34: shapes[0].radius: sphere shape: parameter 'radius' must be > 0, not -1" -- negative.json
 printf '{"shapes": [{"type": "sphere"}], "sensor": {"film": {"width": 100000, "height": 100000}}}' >huge.json
 expect 2 "exceeds the limit" -- huge.json
 printf '{"shapes": [{"type": "sphere"}' >cut.json

@@ -301,16 +301,17 @@ static void test_errors_are_located(void **state) {
     /* Unknown keys anywhere. */
     EXPECT_ERROR(f, "{\"shapez\": []}", PPM_ERROR_PARSE, "scene.json:1:", "shapez: unknown key");
     EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"sphere\", \"radiuss\": 1}]}", PPM_ERROR_PARSE,
-                 "shapes[0].radiuss: unknown key");
+                 "shapes[0].radiuss: sphere shape has no parameter 'radiuss' (did you mean 'radius'?)");
     /* Wrong types and ranges, with the key path and the expectation. */
     EXPECT_ERROR(f, "{\"sensor\": {\"fov\": \"wide\"}, \"shapes\": [{\"type\": \"sphere\"}]}", PPM_ERROR_PARSE,
                  "scene.json:1:20: sensor.fov: expected a number in (0, 180)");
     EXPECT_ERROR(f,
                  "{\"bsdfs\": {\"glass\": {\"type\": \"dielectric\",\n"
                  "                     \"int_ior\": -1}},\n \"shapes\": [{\"type\": \"sphere\"}]}",
-                 PPM_ERROR_PARSE, "scene.json:2:33: bsdfs.glass.int_ior: expected a number > 0");
+                 PPM_ERROR_PARSE,
+                 "scene.json:2:33: bsdfs.glass.int_ior: dielectric material: parameter 'int_ior' must be > 0, not -1");
     EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"sphere\", \"radius\": -2}]}", PPM_ERROR_PARSE,
-                 "shapes[0].radius: expected a number > 0");
+                 "shapes[0].radius: sphere shape: parameter 'radius' must be > 0, not -2");
     EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"sphere\", \"radius\": 1e999}]}", PPM_ERROR_PARSE, "scene.json:1:");
     EXPECT_ERROR(f, "{\"integrator\": {\"passes\": 1.5}, \"shapes\": [{\"type\": \"sphere\"}]}", PPM_ERROR_PARSE,
                  "integrator.passes: expected a whole number");
@@ -328,7 +329,8 @@ static void test_errors_are_located(void **state) {
     EXPECT_ERROR(f,
                  "{\"bsdfs\": {\"hot\": {\"type\": \"diffuse\", \"reflectance\": [1, 2, 0]}}, \"shapes\": [{\"type\": "
                  "\"sphere\"}]}",
-                 PPM_ERROR_PARSE, "bsdfs.hot.reflectance: a reflectance must lie in [0, 1]");
+                 PPM_ERROR_PARSE,
+                 "bsdfs.hot.reflectance: diffuse material: parameter 'reflectance' must be at most 1 in every channel");
     EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"sphere\", \"bsdf\": \"gold\"}]}", PPM_ERROR_PARSE,
                  "shapes[0].bsdf: no bsdf named 'gold'");
     EXPECT_ERROR(f, "{\"shapes\": []}", PPM_ERROR_PARSE, "shapes: a scene needs at least one shape");
@@ -342,14 +344,14 @@ static void test_errors_are_located(void **state) {
                  PPM_ERROR_PARSE, "shapes[0].to_world: a transform operation has exactly one key");
     EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"rectangle\", \"to_world\": [{\"shear\": 1}]}]}", PPM_ERROR_PARSE,
                  "shapes[0].to_world[0].shear: unknown key");
-    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"sphere\", \"to_world\": {\"scale\": [1, 2, 1]}}]}",
-                 PPM_ERROR_INVALID_ARGUMENT, "shapes[0].to_world: ");
+    EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"sphere\", \"to_world\": {\"scale\": [1, 2, 1]}}]}", PPM_ERROR_PARSE,
+                 "shapes[0].to_world: ");
     /* Degenerate geometry reported by the API, located in the file. */
     EXPECT_ERROR(f,
                  "{\"shapes\": [{\"type\": \"quad\", \"origin\": [0,0,0], \"edge_u\": [1,0,0], \"edge_v\": [2,0,0]}]}",
                  PPM_ERROR_INVALID_ARGUMENT, "scene.json:1:13: shapes[0]: ");
     EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"bezier\", \"patches\": [[[0,0,0]]]}]}", PPM_ERROR_PARSE,
-                 "shapes[0].patches[0]: expected 16 control points");
+                 "shapes[0].patches: bezier shape: parameter 'patches' must hold 48 numbers per patch");
     EXPECT_ERROR(f, "{\"shapes\": [{\"type\": \"obj\", \"emitter\": {\"type\": \"area\"}, \"filename\": \"x.obj\"}]}",
                  PPM_ERROR_IO, "shapes[0].filename: file not found: ");
 }
@@ -397,7 +399,8 @@ static void test_overflowing_magnitudes_are_refused_where_they_stand(void **stat
     fixture *f = *state;
     EXPECT_ERROR(f,
                  "{\"emitters\": [{\"type\": \"point\", \"intensity\": 1e308}], \"shapes\": [{\"type\": \"sphere\"}]}",
-                 PPM_ERROR_INVALID_ARGUMENT, "scene.json:1:15: emitters[0]: intensity 1e+308 exceeds the limit 1e+20");
+                 PPM_ERROR_PARSE,
+                 "scene.json:1:46: emitters[0].intensity: point light: parameter 'intensity' exceeds the limit 1e+20");
     EXPECT_ERROR(f,
                  "{\"shapes\": [{\"type\": \"rectangle\", \"emitter\": {\"type\": \"area\", \"radiance\": [1e300, 1, "
                  "1]}}]}",
@@ -425,9 +428,9 @@ static void test_overflowing_magnitudes_are_refused_where_they_stand(void **stat
                  "{\"shapes\": [{\"type\": \"bezier\", \"to_world\": {\"scale\": 1e12}, \"patches\": [[[0,0,0],[1,0,0],"
                  "[2,0,0],[3,0,0],[0,1,0],[1,1,0],[2,1,0],[3,1,0],[0,2,0],[1,2,0],[2,2,0],[3,2,0],[0,3,0],[1,3,0],"
                  "[2,3,0],[3,3,0]]]}]}",
-                 PPM_ERROR_INVALID_ARGUMENT,
-                 "shapes[0].to_world: geometry 0 (Bezier patches): the bounding box of the Bezier patches reaches the "
-                 "coordinate 3000000000000");
+                 PPM_ERROR_PARSE,
+                 "shapes[0].to_world: bezier shape: parameter 'to_world' cannot place the shape: geometry 0 (Bezier "
+                 "patches): the bounding box of the Bezier patches reaches the coordinate 3000000000000");
     char bpt[320];
     snprintf(bpt, sizeof bpt, "%s/far.bpt", f->folder);
     write_text(bpt, "1\n3 3\n0 0 0\n1 0 0\n2 0 0\n3 0 0\n0 1 0\n1 1 0\n2 1 0\n3 1 0\n0 2 0\n1 2 0\n2 2 0\n3 2 0\n"

@@ -226,7 +226,8 @@ static void test_misspellings_get_a_suggestion(void **state) {
     assert_int_equal(
         ppm_scene_file_load_memory(f->context, bad_key, strlen(bad_key), "typo.json", f->folder, NULL, &file),
         PPM_ERROR_PARSE);
-    assert_message_has("bsdfs.grey.reflectanse: unknown key (did you mean 'reflectance'?)");
+    assert_message_has(
+        "bsdfs.grey.reflectanse: diffuse material has no parameter 'reflectanse' (did you mean 'reflectance'?)");
     assert_null(file);
 }
 

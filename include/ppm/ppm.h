@@ -543,6 +543,30 @@ PPM_API ppm_status ppm_scene_add_texture(ppm_scene scene, const char *type, cons
  * docs/scene-format.md); area lights are emission on a geometry (above). */
 PPM_API ppm_status ppm_scene_add_light(ppm_scene scene, const char *type, const ppm_param *params, size_t param_count,
                                        uint32_t *out_light_id);
+/* A shape with Mitsuba 3's names: `sphere` (center, radius), `rectangle`, `disk`, `cylinder`
+ * (p0, p1, radius), `cube`, `obj`, `ply`, `serialized` (filename, shape_index), and libppm's
+ * `quad` (origin, edge_u, edge_v) and `bezier` (filename of a .bpt file, or patches: 48
+ * numbers per patch; uv_rects: 4 per patch). Every type takes `to_world` (16 numbers,
+ * row-major; default the identity) and `bsdf` (PPM_PARAM_MATERIAL); all but sphere and
+ * bezier take `flip_normals`; mesh files take `face_normals`. Parameters and their defaults
+ * are listed in docs/scene-format.md. The shape becomes one geometry, whose id goes to
+ * *out_geom_id (may be NULL); it is placed and oriented as Mitsuba places it (a mirroring
+ * to_world keeps Mitsuba's normal). Every parameter is checked before the geometry is added,
+ * except a `uv_rects` count that does not match the patches of a .bpt file, which is known
+ * only once the file is read (the geometry is then left in the scene). The typed calls above
+ * (ppm_scene_add_sphere, _quad, _disk, _cylinder, _triangle_mesh, ppm_scene_load_*) are the
+ * same geometries with explicit arguments. Errors: as ppm_scene_add_material, and IO and
+ * PARSE for mesh files. */
+PPM_API ppm_status ppm_scene_add_shape(ppm_scene scene, const char *type, const ppm_param *params, size_t param_count,
+                                       uint32_t *out_geom_id);
+
+/* The types a kind of plugin has, in a fixed order: kind "material", "texture", "light" and
+ * "shape" (the types of ppm_scene_add_material, _texture, _light and _shape, which the scene
+ * file readers accept too) or "mode" (the renderer's "mode" setting). *out_name is a static
+ * string, valid for the life of the library. Thread rules: any thread, any time.
+ * Errors: INVALID_ARGUMENT (NULL kind or output, unknown kind, index >= count). */
+PPM_API ppm_status ppm_type_count(const char *kind, size_t *out_count);
+PPM_API ppm_status ppm_type_name(const char *kind, size_t index, const char **out_name);
 
 /* ---------------------------------------------------------------------------------------- */
 /* Rendering: progressive photon mapping                                                     */

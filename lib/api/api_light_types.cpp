@@ -6,6 +6,7 @@
 
 #include "api/api_params.h"
 #include "api/api_support.h"
+#include "api/api_type_tables.h"
 #include "material/texture.h"
 
 #include <string>
@@ -99,6 +100,12 @@ const LightType kLightTypes[] = {
 };
 
 } // namespace
+
+namespace ppm::api {
+
+std::vector<const char *> light_type_names() { return type_names(kLightTypes); }
+
+} // namespace ppm::api
 
 extern "C" ppm_status ppm_scene_add_light(ppm_scene scene, const char *type, const ppm_param *params,
                                           size_t param_count, uint32_t *out_light_id) {

@@ -6,6 +6,7 @@
 
 #include "api/api_params.h"
 #include "api/api_support.h"
+#include "api/api_type_tables.h"
 #include "core/suggest.h"
 #include "material/conductor_table.h"
 
@@ -230,6 +231,12 @@ const MaterialType kMaterialTypes[] = {
 };
 
 } // namespace
+
+namespace ppm::api {
+
+std::vector<const char *> material_type_names() { return type_names(kMaterialTypes); }
+
+} // namespace ppm::api
 
 extern "C" ppm_status ppm_scene_add_material(ppm_scene scene, const char *type, const ppm_param *params,
                                              size_t param_count, uint32_t *out_material_id) {

@@ -88,6 +88,14 @@ const double *Params::numbers(const char *name, std::size_t count_wanted, const 
     return p.numbers;
 }
 
+std::vector<double> Params::number_list(const char *name) {
+    const ppm_param &p = take(name, PPM_PARAM_NUMBERS, "numbers");
+    if (p.count == 0) fail(name, "must hold at least one number");
+    for (std::size_t i = 0; i < p.count; ++i)
+        if (!std::isfinite(p.numbers[i])) fail(name, "must be finite, not " + format_number(p.numbers[i]));
+    return std::vector<double>(p.numbers, p.numbers + p.count);
+}
+
 double Params::number(const char *name, double fallback) {
     if (!has(name)) {
         find(name);

@@ -37,6 +37,8 @@ public:
     Rgb color(const char *name, const Rgb &fallback);
     // A colour with every channel in [0, 1] (energy conservation).
     Rgb reflectance(const char *name, const Rgb &fallback);
+    // One or more finite numbers (a list whose length the caller checks).
+    std::vector<double> number_list(const char *name);
     // 3 finite numbers.
     Vec3 vec3(const char *name, const Vec3 &fallback);
     // 16 finite numbers, row-major; the last row must be 0 0 0 1.

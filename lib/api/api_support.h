@@ -28,8 +28,19 @@ namespace ppm::api {
 std::string &last_error();
 
 // Runs `body`, mapping exceptions to a status; reports failures to the context's callback.
+// How deep the calling thread is in guarded calls: a call made by another call of the API (a
+// table row building through a typed function) leaves the report to the outermost one.
+inline int &guarded_depth() {
+    thread_local int depth = 0;
+    return depth;
+}
+
 template <class Body> ppm_status guarded(const ppm::Context *context, Body &&body) noexcept {
     ppm_status status = PPM_OK;
+    struct Depth {
+        Depth() { ++guarded_depth(); }
+        ~Depth() { --guarded_depth(); }
+    } depth;
     try {
         body();
         last_error().clear();
@@ -47,7 +58,7 @@ template <class Body> ppm_status guarded(const ppm::Context *context, Body &&bod
         status = PPM_ERROR_INTERNAL;
         last_error() = "internal error: unknown exception";
     }
-    if (context) context->report_error(status, last_error().c_str());
+    if (context && guarded_depth() == 1) context->report_error(status, last_error().c_str());
     return status;
 }
 

@@ -6,6 +6,7 @@
 
 #include "api/api_params.h"
 #include "api/api_support.h"
+#include "api/api_type_tables.h"
 
 #include <string>
 
@@ -65,6 +66,12 @@ const TextureType kTextureTypes[] = {
 };
 
 } // namespace
+
+namespace ppm::api {
+
+std::vector<const char *> texture_type_names() { return type_names(kTextureTypes); }
+
+} // namespace ppm::api
 
 extern "C" ppm_status ppm_scene_add_texture(ppm_scene scene, const char *type, const ppm_param *params,
                                             size_t param_count, uint32_t *out_texture_id) {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "scenefile/mitsuba_xml.h"
 
+#include <ppm/ppm.h>
+
 #include "core/error.h"
 #include "core/suggest.h"
 #include "io/text_file.h"
@@ -50,15 +52,26 @@ const std::set<std::string> &object_tags() {
     return tags;
 }
 
-// The types the builder renders (scene_builder.cpp); lenient mode substitutes the others.
+// The types libppm renders, by XML tag: the API's type tables (ppm_type_name), which the
+// builder (scene_builder.cpp) reads the objects with; lenient mode substitutes the others.
 const std::set<std::string> &renderable(const std::string &tag) {
-    static const std::map<std::string, std::set<std::string>> types = {
-        {"bsdf",
-         {"diffuse", "conductor", "roughconductor", "dielectric", "plastic", "twosided", "thindielectric",
-          "roughdielectric", "roughplastic", "blendbsdf", "mask"}},
-        {"emitter", {"point", "spot", "area", "constant", "envmap", "directional"}},
-        {"shape", {"sphere", "rectangle", "disk", "cylinder", "cube", "obj", "ply", "serialized", "bezier"}},
-        {"texture", {"bitmap", "checkerboard"}}};
+    static const std::map<std::string, std::set<std::string>> types = [] {
+        std::map<std::string, std::set<std::string>> by_tag;
+        const std::pair<const char *, const char *> kinds[] = {
+            {"bsdf", "material"}, {"emitter", "light"}, {"shape", "shape"}, {"texture", "texture"}};
+        for (const auto &[tag, kind] : kinds) {
+            std::size_t count = 0;
+            ppm_type_count(kind, &count);
+            for (std::size_t i = 0; i < count; ++i) {
+                const char *name = nullptr;
+                if (ppm_type_name(kind, i, &name) == PPM_OK) by_tag[tag].insert(name);
+            }
+        }
+        // An area emitter is not a light of its own but the emission of the shape that holds
+        // it (ppm_scene_set_geometry_emission).
+        by_tag["emitter"].insert("area");
+        return by_tag;
+    }();
     static const std::set<std::string> none;
     const auto found = types.find(tag);
     return found == types.end() ? none : found->second;

@@ -26,7 +26,7 @@ private:
     // A member naming a bsdf of `bsdfs` or holding one.
     std::uint32_t nested_material(const JsonNode &bsdf);
     std::uint32_t add_texture(const JsonNode &texture);
-    SceneParams params_of(const JsonNode &object);
+    SceneParams params_of(const JsonNode &object, std::initializer_list<const char *> skip = {});
     std::uint32_t shape_material(const JsonNode &shape);
     void add_shape(const JsonNode &shape);
     void add_emitter(const JsonNode &emitter);

@@ -10,6 +10,7 @@
 
 #include <deque>
 #include <functional>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -22,12 +23,16 @@ public:
     using NestedMaterial = std::function<std::uint32_t(const JsonNode &)>;
     using NestedTexture = std::function<std::uint32_t(const JsonNode &)>;
 
-    // Every member of `object` but "type": numbers, booleans (0/1) and arrays of numbers as
-    // numbers; {"type": "rgb", "value": ...} as its colour; `to_world`/`to_uv` (any transform
-    // form) as 16 numbers; strings as strings; "bsdf*" members as materials; other objects as
-    // textures. `folder` resolves `filename` members.
+    // Every member of `object` but "type" and those in `skip`: numbers, booleans (0/1) and
+    // arrays of numbers (nested arrays flattened in order) as numbers; {"type": "rgb",
+    // "value": ...} as its colour; `to_world`/`to_uv` (any transform form) as 16 numbers;
+    // strings as strings; "bsdf*" members as materials; other objects as textures. `folder`
+    // resolves `filename` members.
     SceneParams(const JsonNode &object, const std::string &folder, const NestedMaterial &material,
-                const NestedTexture &texture);
+                const NestedTexture &texture, std::initializer_list<const char *> skip = {});
+
+    // Adds a material parameter that the file gives in another form (a shape's default).
+    void add_material(const std::string &name, std::uint32_t id);
 
     const ppm_param *data() const { return params_.data(); }
     std::size_t size() const { return params_.size(); }
