@@ -11,6 +11,8 @@
  *  - a spot light: full intensity inside the beam, none beyond the cutoff; photons and
  *    shadow rays agree when two lights share the power (light selection probabilities);
  *  - the same seed gives the same image for 1 and 2 threads, another seed another image;
+ *  - ppm_render_pass and ppm_render_pass_index, the first names of ppm_renderer_render_pass
+ *    and ppm_renderer_render_pass_index, render the same images and refuse the same calls;
  *  - cancel, settings and argument errors.
  * All in the photon modes (sppm unless a test sets another). */
 #include <ppm/ppm.h>
@@ -19,6 +21,7 @@
 #include "test_support.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -457,6 +460,84 @@ static void same_image_with_either_search_and_the_tree_in_parts(void **state) {
     for (int k = 0; k < runs; ++k) free(images[k]);
 }
 
+/* `renamed` and `alias` fail alike: the expected status, and the same message. */
+#define assert_same_error(renamed, alias, expected, needle)                                                            \
+    do {                                                                                                               \
+        char renamed_message_[512];                                                                                    \
+        assert_ppm_error(renamed, expected, needle);                                                                   \
+        snprintf(renamed_message_, sizeof renamed_message_, "%s", ppm_last_error_message());                           \
+        assert_ppm_error(alias, expected, needle);                                                                     \
+        assert_string_equal(ppm_last_error_message(), renamed_message_);                                               \
+    } while (0)
+
+/* The aliases are the same functions: a renderer driven by the old name renders the image of
+ * one driven by the new name, bit for bit, in a photon mode (passes in order) and in the
+ * default, pass-independent mode (a pass by its index). */
+static void former_pass_names_render_the_same(void **state) {
+    scene_fixture *f = *state;
+    build_furnace(f->scene, 0.6, 1.0, 1);
+    const double origin[3] = {0, 0, -0.8}, target[3] = {0, 0, 1};
+    enum { width = 16, height = 12, floats = 3 * width * height };
+    float *images[4];
+    for (int k = 0; k < 4; ++k) {
+        const int alias = k % 2, by_index = k >= 2;
+        ppm_renderer r = make_renderer(f->scene, origin, target, 70, width, height);
+        if (by_index) assert_ppm_ok(ppm_renderer_set_string(r, "mode", "vcm"));
+        assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", 500));
+        for (int pass = 0; pass < 2; ++pass) {
+            if (by_index)
+                assert_ppm_ok(alias ? ppm_render_pass_index(r, 3 - pass) : ppm_renderer_render_pass_index(r, 3 - pass));
+            else
+                assert_ppm_ok(alias ? ppm_render_pass(r) : ppm_renderer_render_pass(r));
+        }
+        int64_t passes = 0;
+        assert_ppm_ok(ppm_renderer_get_int(r, "passes", &passes));
+        assert_int_equal(passes, 2);
+        images[k] = render(r, 0).rgb;
+        ppm_renderer_release(r);
+    }
+    assert_memory_equal(images[0], images[1], sizeof(float) * floats);
+    assert_memory_equal(images[2], images[3], sizeof(float) * floats);
+    double sum = 0;
+    for (int i = 0; i < floats; ++i) sum += images[0][i] + images[2][i];
+    assert_true(sum > 0);
+    for (int k = 0; k < 4; ++k) free(images[k]);
+}
+
+static void former_pass_names_refuse_the_same(void **state) {
+    scene_fixture *f = *state;
+    assert_same_error(ppm_renderer_render_pass(NULL), ppm_render_pass(NULL), PPM_ERROR_INVALID_ARGUMENT, "NULL");
+    assert_same_error(ppm_renderer_render_pass_index(NULL, 0), ppm_render_pass_index(NULL, 0),
+                      PPM_ERROR_INVALID_ARGUMENT, "NULL");
+    build_furnace(f->scene, 0.5, 1.0, 0);
+    const double origin[3] = {0, 0, 0}, target[3] = {0, 0, 1};
+    ppm_renderer r = make_renderer(f->scene, origin, target, 60, 8, 8);
+    assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", 100));
+    assert_same_error(ppm_renderer_render_pass_index(r, 0), ppm_render_pass_index(r, 0), PPM_ERROR_INVALID_OPERATION,
+                      "pass-independent");
+    assert_ppm_ok(ppm_renderer_cancel(r));
+    assert_ppm_error(ppm_renderer_render_pass(r), PPM_ERROR_CANCELLED, "cancelled");
+    assert_ppm_ok(ppm_renderer_cancel(r));
+    assert_ppm_error(ppm_render_pass(r), PPM_ERROR_CANCELLED, "cancelled");
+    ppm_renderer_release(r);
+
+    r = make_renderer(f->scene, origin, target, 60, 8, 8);
+    assert_ppm_ok(ppm_renderer_set_string(r, "mode", "pppm"));
+    assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", 100));
+    assert_same_error(ppm_renderer_render_pass_index(r, UINT64_C(1) << 32), ppm_render_pass_index(r, UINT64_C(1) << 32),
+                      PPM_ERROR_INVALID_ARGUMENT, "2^32");
+    assert_ppm_ok(ppm_render_pass_index(r, 5));
+    assert_same_error(ppm_renderer_render_pass_index(r, 5), ppm_render_pass_index(r, 5), PPM_ERROR_INVALID_OPERATION,
+                      "rendered already");
+    ppm_renderer_release(r);
+
+    const double corner[3] = {-1, -1, -1}, edge_u[3] = {2, 0, 0}, edge_v[3] = {0, 2, 0};
+    r = make_renderer(f->scene, origin, target, 60, 8, 8);
+    assert_ppm_ok(ppm_scene_add_quad(f->scene, corner, edge_u, edge_v, NULL));
+    assert_same_error(ppm_renderer_render_pass(r), ppm_render_pass(r), PPM_ERROR_INVALID_OPERATION, "not committed");
+    ppm_renderer_release(r);
+}
+
 static void cancel_discards_the_pass(void **state) {
     scene_fixture *f = *state;
     build_furnace(f->scene, 0.5, 1.0, 0);
@@ -605,6 +686,8 @@ int main(void) {
                                         scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(same_seed_same_image_any_thread_count, scene_fixture_setup,
                                         scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(former_pass_names_render_the_same, scene_fixture_setup, scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(former_pass_names_refuse_the_same, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(cancel_discards_the_pass, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(settings_and_argument_errors, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(scene_errors, scene_fixture_setup, scene_fixture_teardown),

@@ -1,14 +1,17 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * libppm — exact ray tracing of bicubic Bezier patches and progressive photon mapping.
+ * libppm — exact ray tracing of bicubic Bezier patches, and rendering by photon mapping and
+ * vertex connection and merging.
  *
  * This header is the specification of the C ABI. It is C99 and self-contained.
  *
  * Conventions that hold for every function unless its comment says otherwise:
  *  - Every fallible call returns a ppm_status; PPM_OK (0) is success. On failure no output
- *    parameter is written and ppm_last_error_message() on the same thread says what was wrong
- *    and where (argument name, file and line, index). The context's error callback, if set,
- *    receives the same message.
+ *    parameter is written (the few exceptions say so: a handle output set to NULL, a count
+ *    that tells the caller how much room to make) and ppm_last_error_message() on the same
+ *    thread says what was wrong and where (argument name, file and line, index). The error
+ *    callback of the context that the call's object belongs to, if set, receives the same
+ *    message (meshes, partials, images and hits belong to no context).
  *  - No function aborts, exits, or lets a C++ exception escape.
  *  - Handles are opaque and reference counted: *_create returns a handle holding one
  *    reference, *_retain adds one, *_release drops one and frees the object at zero.
@@ -22,7 +25,8 @@
  *  - Typed settings: contexts, scenes and renderers take string keys through
  *    ppm_<object>_set_int / _set_double / _get_int / _get_double (renderers also
  *    _set_string / _get_string); scene files have read-only values (_get_int / _get_double),
- *    meshes read-only doubles (_get_double). The same rules hold for each of them:
+ *    meshes read-only doubles (_get_double), partials integers (_get_int, and _set_int for
+ *    their one writable key). The same rules hold for each of them:
  *    an unknown key is INVALID_ARGUMENT naming the key and listing the object's keys; an
  *    integer key also takes set_double with a whole number and answers get_double exactly;
  *    a floating-point key also takes set_int, but get_int refuses it (INVALID_ARGUMENT
@@ -33,6 +37,10 @@
  *    that may grow start with a `size` field (sizeof the struct as the caller compiled it):
  *    the library reads and writes only that many bytes, so callers built against an older
  *    header keep working, and a field appended later means "as before" when 0.
+ *  - Names: functions are ppm_<object>_<verb> (ppm_scene_commit, ppm_renderer_render_pass).
+ *    A function first exported under another name keeps that name as an alias: the same
+ *    function, declared beside the new name and kept in the ABI, so programs built against
+ *    it keep working.
  */
 #ifndef PPM_PPM_H
 #define PPM_PPM_H
@@ -72,9 +80,10 @@ PPM_API const char *ppm_version_string(void);
 /* Short constant English name of a status ("invalid argument"); never NULL. Thread safe. */
 PPM_API const char *ppm_status_string(ppm_status status);
 
-/* Message of the last failed ppm_* call on the calling thread, or "" if the last call
- * succeeded. Works without any handle, so it explains why a *_create failed. The string
- * belongs to the library and stays valid until the next ppm_* call on the same thread. */
+/* Message of the last ppm_* call on the calling thread that returns a ppm_status: what was
+ * wrong if it failed, "" if it succeeded. Works without any handle, so it explains why a
+ * *_create failed. The string belongs to the library and stays valid until the next ppm_*
+ * call on the same thread. */
 PPM_API const char *ppm_last_error_message(void);
 
 /* ---------------------------------------------------------------------------------------- */
@@ -95,7 +104,8 @@ typedef void (*ppm_warning_callback)(void *user_data, const char *message);
 
 /* Creates a context with default settings (all hardware threads). The caller owns the one
  * reference returned. Thread safe.
- * Errors: INVALID_ARGUMENT (out NULL), UNSUPPORTED (Embree device creation failed). */
+ * Errors: INVALID_ARGUMENT (out NULL), UNSUPPORTED (Embree device creation failed),
+ * OUT_OF_MEMORY. */
 PPM_API ppm_status ppm_context_create(ppm_context *out_context);
 /* Adds / drops a reference (atomic: thread safe). The context is freed when the caller's and
  * all scenes' references are gone. Errors (retain): INVALID_ARGUMENT (context NULL). */
@@ -156,9 +166,10 @@ PPM_API void ppm_scene_release(ppm_scene scene);
  *                only the few sub-patches near it. n in [1, 32], default 12. Memory against
  *                speed: memory grows with n^2 per patch (each sub-patch keeps its culling
  *                data and a share of the BVH), while a smaller n makes every ray test larger
- *                sub-patches and so costs time; README "Benchmarks" measures both. Accuracy
- *                does not depend on it.
- * A change takes effect at the next ppm_scene_commit.
+ *                sub-patches and so costs time; docs/how-it-works.md ("Memory against
+ *                speed") gives both on the teapot. Accuracy does not depend on it.
+ * Setting either key marks the scene uncommitted (queries need ppm_scene_commit again); the
+ * new value takes effect at that commit.
  * Errors: INVALID_ARGUMENT (NULL, unknown key, wrong type, value NaN, not whole for an int
  * key, or out of range). Thread safety: setters change the scene (see Geometry below);
  * getters may run concurrently with queries and other getters. */
@@ -168,17 +179,19 @@ PPM_API ppm_status ppm_scene_set_double(ppm_scene scene, const char *key, double
 PPM_API ppm_status ppm_scene_get_double(ppm_scene scene, const char *key, double *out_value);
 
 /* Geometry. Each add call copies its input and returns a geometry id (0, 1, 2, ... in the
- * order of addition) in *out_geom_id, which may be NULL. Adding marks the scene uncommitted.
+ * order of addition) in *out_geom_id, which may be NULL. Adding a geometry, and changing one
+ * (its transform, material id, flip_normals or face_normals), marks the scene uncommitted:
+ * queries and render passes then fail with INVALID_OPERATION until ppm_scene_commit.
  * Every call below that takes a geom_id fails with INVALID_ARGUMENT when it names no
  * geometry of the scene, and every call fails with INVALID_ARGUMENT for a NULL scene or a
  * NULL pointer argument that is not documented as optional.
  * Coordinates must be finite, and every coordinate, length and radius of the placed geometry
  * (its transform applied) must lie within +-1e12 scene units; degenerate input (zero radius,
  * zero-area quad, out-of-range index) and input beyond that limit are INVALID_ARGUMENT naming
- * the offending element. Zero-area triangles of a mesh are
- * allowed and never hit. A failed add leaves the scene unchanged.
- * Thread safety of all calls that change a scene (add, load, set, commit): they must not overlap
- * any other call on the same scene. */
+ * the offending element. Zero-area triangles of a mesh are allowed and never hit. A failed
+ * add leaves the scene unchanged.
+ * Thread safety of all calls that change a scene (add, load, set, commit): they must not
+ * overlap any other call on the same scene. */
 
 /* Bicubic Bezier patches: `control_points` holds patch_count * 16 * 3 doubles; patch p has
  * control points P[i][j] at index p*16 + i*4 + j (x, y, z consecutive) and the surface
@@ -272,18 +285,21 @@ PPM_API ppm_status ppm_scene_load_serialized(ppm_scene scene, const char *path, 
                                              uint32_t *out_geom_id);
 
 /* Affine transform of a geometry: 16 doubles, row-major 4x4 matrix M applied to points as
- * M * (x, y, z, 1); the last row must be (0, 0, 0, 1) and the upper 3x3 invertible. Patches
- * and meshes are transformed exactly (control points); spheres need a similarity transform
- * (uniform scale). Default identity. Applied at commit. Errors: INVALID_ARGUMENT (a NaN or
- * infinite element, a projective last row, a singular 3x3, a non-similarity on a sphere,
- * the placed geometry beyond the coordinate limit; the scene is unchanged). */
+ * M * (x, y, z, 1); the last row must be (0, 0, 0, 1) and the upper 3x3 invertible. Patches,
+ * meshes, quads and disks are transformed exactly (their control points, vertices, origin
+ * and axes); spheres and cylinders take only similarity transforms (rotations, reflections,
+ * translations and uniform scaling). Default identity. Applied at commit. Errors:
+ * INVALID_ARGUMENT (a NaN or infinite element, a projective last row, a singular 3x3, a
+ * non-similarity on a sphere or cylinder, the placed geometry beyond the coordinate limit;
+ * the scene is unchanged). */
 PPM_API ppm_status ppm_scene_set_geometry_transform(ppm_scene scene, uint32_t geom_id, const double matrix[16]);
 
 /* User material id reported in every hit of this geometry (default 0). Any id is accepted
  * here; a renderer checks that it names a material of the scene (ppm_renderer_create). */
 PPM_API ppm_status ppm_scene_set_geometry_material(ppm_scene scene, uint32_t geom_id, uint32_t material_id);
 
-/* Number of primitives of a geometry: patches, triangles, or 1 for a sphere or quad.
+/* Number of primitives of a geometry: patches, triangles, or 1 for a sphere, quad, disk or
+ * cylinder.
  * Getters (this one and the three below) may run concurrently with queries and other
  * getters on the same scene. */
 PPM_API ppm_status ppm_scene_get_primitive_count(ppm_scene scene, uint32_t geom_id, size_t *out_count);
@@ -332,14 +348,15 @@ typedef struct ppm_hit {
                           derivative vanishes); as stored, not flipped towards the ray */
     double ns[3];      /* unit shading normal (interpolated vertex normal on meshes) */
     uint32_t geom_id;  /* geometry id from the add call */
-    uint32_t prim_id;  /* patch or triangle index within the geometry; 0 for spheres, quads */
+    uint32_t prim_id;  /* patch or triangle index within the geometry; 0 for the other shapes */
     uint32_t material; /* material id of the geometry */
     uint32_t reserved; /* 0 */
 } ppm_hit;
 
 /* Closest hit of each of `count` rays, written to hits[i]; count 0 does nothing and succeeds.
- * Large batches run on the context's worker threads. Errors: INVALID_ARGUMENT (NULL, a ray with NaN/Inf origin, zero or
- * non-finite direction, tnear < 0 or tnear > tfar: the message names the first bad index),
+ * Every ray is checked before any hit is written. Large batches run on the context's worker
+ * threads. Errors: INVALID_ARGUMENT (NULL, a ray with NaN/Inf origin, zero or non-finite
+ * direction, tnear < 0 or tnear > tfar: the message names the first bad index),
  * INVALID_OPERATION (scene not committed). Thread safe on a committed scene. */
 PPM_API ppm_status ppm_scene_intersect(ppm_scene scene, const ppm_ray *rays, size_t count, ppm_hit *hits);
 
@@ -430,74 +447,28 @@ PPM_API ppm_status ppm_mesh_get_double(ppm_mesh mesh, const char *key, double *o
 /* Materials, textures and lights (Mitsuba 3 names and units)                               */
 /* ---------------------------------------------------------------------------------------- */
 
-/* Materials get ids 0, 1, 2, ... in the order they are added; ppm_scene_set_geometry_material
- * assigns one to a geometry. A scene without any material renders everything as diffuse grey
- * 0.5; once it has materials, every geometry's id must name one (checked when a renderer is
- * created). Colours are linear RGB; reflectances lie in [0, 1] per channel, indices of
- * refraction are finite and > 0. All opaque materials are two-sided. The id goes to
- * *out_material_id, which may be NULL. These calls, and those of textures and lights below,
- * change the scene: the thread rules of Geometry above apply.
+/* Materials, textures and lights are made by type name and named parameters, as Mitsuba 3's
+ * load_dict takes them (ppm_scene_add_material, ppm_scene_add_texture, ppm_scene_add_light);
+ * the typed calls after them are shorthands for the most common types. Materials, textures
+ * and lights are numbered apart, each from 0 in the order they are added, by the named calls
+ * and the shorthands alike; each add call writes the new id to its last argument, which may
+ * be NULL.
+ * Materials: ppm_scene_set_geometry_material assigns one to a geometry. A scene without any
+ * material renders everything as diffuse grey 0.5; once it has materials, every geometry's id
+ * must name one (checked when a renderer is created). Colours are linear RGB; reflectances
+ * lie in [0, 1] per channel, indices of refraction are finite and > 0. All opaque materials
+ * are two-sided.
+ * Lights: intensities, radiances and irradiances are finite, >= 0 and at most 1e20 per
+ * channel; positions obey the coordinate limit. An area light is not added here: it is
+ * emission on a geometry (ppm_scene_set_geometry_emission, at the end of this section).
+ * A renderer copies the materials, textures and lights when it is created; later additions
+ * do not reach it, and none of these calls marks the scene uncommitted. They change the
+ * scene all the same: the thread rules of Geometry above apply.
  * Errors: INVALID_ARGUMENT naming the bad value (or the NULL scene or argument). */
-/* Lambertian (Mitsuba `diffuse`, `reflectance`). */
-PPM_API ppm_status ppm_scene_add_diffuse_material(ppm_scene scene, const double reflectance[3],
-                                                  uint32_t *out_material_id);
-/* Perfect mirror (Mitsuba `conductor` with a tint: `specular_reflectance`). */
-PPM_API ppm_status ppm_scene_add_mirror_material(ppm_scene scene, const double specular_reflectance[3],
-                                                 uint32_t *out_material_id);
-/* Smooth glass with exact Fresnel (Mitsuba `dielectric`, `int_ior`, `ext_ior`; Mitsuba's
- * defaults are 1.5046 and 1.000277). The surface normal must point outwards (to ext_ior). */
-PPM_API ppm_status ppm_scene_add_dielectric_material(ppm_scene scene, double int_ior, double ext_ior,
-                                                     uint32_t *out_material_id);
-/* Diffuse base under a smooth dielectric coat, like glazed porcelain (Mitsuba `plastic` with
- * nonlinear = false: `diffuse_reflectance`, `int_ior`, `ext_ior`). */
-PPM_API ppm_status ppm_scene_add_coated_material(ppm_scene scene, const double diffuse_reflectance[3], double int_ior,
-                                                 double ext_ior, uint32_t *out_material_id);
 
-/* Gives a material (diffuse, mirror or coated) an image texture that replaces its colour.
- * The file is read now through OpenImageIO (any format it reads; 8/16-bit images are decoded
- * from sRGB to linear, float images taken as linear). Lookups are bilinear and repeat, at
- * (s * scale[0] + offset[0], t * scale[1] + offset[1]) where (s, t) are the surface's texture
- * coordinates: (u, v) of spheres (spherical mapping), quads (planar) and patches (per patch,
- * or a patch set's rectangles), the vertex uvs of meshes. v = 0 is the image's top row (as in
- * Mitsuba 3). scale and offset may be NULL for (1, 1) and (0, 0).
- * Errors: INVALID_ARGUMENT (bad id, glass, non-finite or zero scale; more than 2^28 pixels;
- * a NaN, infinite or negative texel), IO (unreadable or truncated file; the message names it),
- * PARSE (a header that claims more pixels than the file's bytes can hold). */
-PPM_API ppm_status ppm_scene_set_material_texture(ppm_scene scene, uint32_t material_id, const char *path,
-                                                  const double scale[2], const double offset[2]);
-
-/* Maps one texture across a whole patch set: patch i's (u, v) in [0, 1]^2 maps linearly onto
- * [rects[4i], rects[4i+2]] x [rects[4i+1], rects[4i+3]] in texture space (4 * patch count
- * finite doubles). Errors: INVALID_ARGUMENT (not a patch geometry, NULL, NaN). */
-PPM_API ppm_status ppm_scene_set_patch_uv_rects(ppm_scene scene, uint32_t geom_id, const double *rects);
-
-/* Lights get ids 0, 1, 2, ... in *out_light_id, which may be NULL. Intensities and radiances
- * are finite, >= 0 and at most 1e20 per channel; positions obey the coordinate limit.
- * Errors: INVALID_ARGUMENT naming the bad value. */
-/* Point light (Mitsuba `point`): `intensity` in W/sr per channel, power 4 pi intensity. */
-PPM_API ppm_status ppm_scene_add_point_light(ppm_scene scene, const double position[3], const double intensity[3],
-                                             uint32_t *out_light_id);
-/* Spot light (Mitsuba `spot`): `intensity` in W/sr on the axis from position to target, full
- * out to beam_width degrees and falling linearly in angle to 0 at cutoff_angle degrees
- * (0 < beam_width <= cutoff_angle <= 90; Mitsuba's defaults are 15 and 20). */
-PPM_API ppm_status ppm_scene_add_spot_light(ppm_scene scene, const double position[3], const double target[3],
-                                            const double intensity[3], double cutoff_angle, double beam_width,
-                                            uint32_t *out_light_id);
-/* Makes a quad, sphere, disk, cylinder or triangle mesh an area light (Mitsuba `area`):
- * constant `radiance` (W/(m^2 sr) per channel) on the side the normal points to (quad:
- * edge_u x edge_v; sphere and cylinder: outside; disk: axis_u x axis_v; mesh: the shading
- * normal, i.e. the interpolated vertex normal where the mesh has normals, else the face normal
- * (p1 - p0) x (p2 - p0)), reversed by ppm_scene_set_geometry_flip_normals. Power pi L A with A
- * the exact area (a mesh's: the sum of its triangles'). A mesh light samples points uniformly
- * in area (a table over its triangles, made when rendering starts) and shares the mesh's data
- * without copying it. Black turns it off. Errors: INVALID_ARGUMENT (a Bezier patch set:
- * patches cannot be area lights; negative or NaN values). */
-PPM_API ppm_status ppm_scene_set_geometry_emission(ppm_scene scene, uint32_t geom_id, const double radiance[3]);
-
-/* Materials, textures and lights by type name and named parameters, as Mitsuba 3's load_dict
- * takes them: `type` and every parameter name are Mitsuba 3's (docs/scene-format.md lists the
- * types and their parameters), and a parameter left out takes Mitsuba's default. New types
- * and parameters arrive without changing the ABI. A parameter is one of:
+/* Named parameters: `type` and every parameter name are Mitsuba 3's (docs/scene-format.md
+ * lists the types and their parameters), and a parameter left out takes Mitsuba's default.
+ * New types and parameters arrive without changing the ABI. A parameter is one of:
  *   PPM_PARAM_NUMBERS   `count` doubles at `numbers`: 1 for a float, an integer or a boolean
  *                       (0 or 1), 3 for an RGB colour, a point or a vector, 16 for a 4x4
  *                       transform in row-major order (`to_world`, `to_uv`); a colour may
@@ -509,12 +480,11 @@ PPM_API ppm_status ppm_scene_set_geometry_emission(ppm_scene scene, uint32_t geo
  *                       takes one (`reflectance`, `weight`, ...).
  * Zero-initialise unused fields. Every parameter given must be used by the type: an unknown
  * name, a repeated one, or one of the wrong kind is an error naming it (with a suggestion for
- * a likely misspelling), so that nothing is silently ignored. The id goes to *out_id (may be
- * NULL); materials, textures and lights number from 0 in the order they are added, by these
- * functions and the typed ones above alike. Ownership: nothing is kept of `params` or its
- * strings after the call. Thread rules: as for the typed functions above.
- * Errors: INVALID_ARGUMENT (NULL scene, type or name; unknown type or parameter; a value out
- * of range, naming the parameter), IO (a file that cannot be read, named). */
+ * a likely misspelling), so that nothing is silently ignored. Ownership: nothing is kept of
+ * `params` or its strings after the call.
+ * Errors: INVALID_ARGUMENT (NULL scene or type, a parameter without a name; unknown type or
+ * parameter; a value out of range, naming the parameter), IO (a file that cannot be read,
+ * named). */
 typedef enum ppm_param_type {
     PPM_PARAM_NUMBERS = 0,
     PPM_PARAM_STRING = 1,
@@ -531,16 +501,29 @@ typedef struct ppm_param {
     uint32_t id;        /* PPM_PARAM_MATERIAL, PPM_PARAM_TEXTURE */
 } ppm_param;
 
-/* A material (`diffuse`, `conductor`, `dielectric`, `plastic`, `twosided`, and the types listed
- * in docs/scene-format.md). */
+/* A material. Types: `diffuse`, `conductor` (a perfect mirror unless `material` or `eta`/`k`
+ * is given), `roughconductor`, `dielectric`, `thindielectric`, `roughdielectric`, `plastic`,
+ * `roughplastic`, `twosided` (a copy of its `bsdf`: opaque materials are two-sided already),
+ * `blendbsdf` and `mask`. */
 PPM_API ppm_status ppm_scene_add_material(ppm_scene scene, const char *type, const ppm_param *params,
                                           size_t param_count, uint32_t *out_material_id);
-/* A texture (`bitmap`, and the types listed in docs/scene-format.md) for materials' colour
- * parameters. Texture ids are their own sequence, apart from materials'. */
+/* A texture for the colour parameters of materials (`reflectance`, `specular_reflectance`,
+ * `diffuse_reflectance`) and their weights (`weight` of blendbsdf, `opacity` of mask: the
+ * texture's luminance). Types: `bitmap` (an image file read now through OpenImageIO, any
+ * format it reads; 8/16-bit images are decoded from sRGB to linear unless `raw`, float images
+ * taken as linear) and `checkerboard`. A hit's texture coordinates (s, t) are the hit (u, v)
+ * of spheres, quads, disks and cylinders (as their add calls define them) and of patches
+ * (mapped into a patch set's rectangles by ppm_scene_set_patch_uv_rects), and the
+ * interpolated vertex uvs of meshes (the hit's barycentric (u, v) on a mesh without uvs); the
+ * texture is looked up at `to_uv` applied to (s, t), with v = 0 the image's top row (as in
+ * Mitsuba 3). Errors also: INVALID_ARGUMENT for an image of more than 2^28 pixels or with a
+ * NaN, infinite or negative texel, PARSE for a header that claims more pixels than the file's
+ * bytes can hold. */
 PPM_API ppm_status ppm_scene_add_texture(ppm_scene scene, const char *type, const ppm_param *params, size_t param_count,
                                          uint32_t *out_texture_id);
-/* A light that is not a shape (`point`, `spot`, and the types listed in
- * docs/scene-format.md); area lights are emission on a geometry (above). */
+/* A light that is not a shape. Types: `point`, `spot` (shining along +z of `to_world`),
+ * `constant` and `envmap` (environment lights: what rays leaving the scene see) and
+ * `directional`. */
 PPM_API ppm_status ppm_scene_add_light(ppm_scene scene, const char *type, const ppm_param *params, size_t param_count,
                                        uint32_t *out_light_id);
 /* A shape with Mitsuba 3's names: `sphere` (center, radius), `rectangle`, `disk`, `cylinder`
@@ -568,9 +551,108 @@ PPM_API ppm_status ppm_scene_add_shape(ppm_scene scene, const char *type, const 
 PPM_API ppm_status ppm_type_count(const char *kind, size_t *out_count);
 PPM_API ppm_status ppm_type_name(const char *kind, size_t index, const char **out_name);
 
+/* Shorthands. Each call below is ppm_scene_add_material or ppm_scene_add_light with the type
+ * and parameters it names: it makes the same material or light, accepts and refuses the same
+ * values (its messages name the C argument), and takes the next id of the same sequence. Its
+ * arguments have no defaults; where Mitsuba has one, it is given for reference. */
+/* Lambertian: "diffuse" with `reflectance` (3 numbers). */
+PPM_API ppm_status ppm_scene_add_diffuse_material(ppm_scene scene, const double reflectance[3],
+                                                  uint32_t *out_material_id);
+/* Perfect mirror tinted by `specular_reflectance`: "conductor" with `specular_reflectance` (3
+ * numbers) and nothing else (`material` "none", no eta or k). */
+PPM_API ppm_status ppm_scene_add_mirror_material(ppm_scene scene, const double specular_reflectance[3],
+                                                 uint32_t *out_material_id);
+/* Smooth glass with exact Fresnel: "dielectric" with `int_ior` and `ext_ior` (Mitsuba's
+ * defaults 1.5046 and 1.000277). The surface normal must point outwards (to ext_ior). */
+PPM_API ppm_status ppm_scene_add_dielectric_material(ppm_scene scene, double int_ior, double ext_ior,
+                                                     uint32_t *out_material_id);
+/* Diffuse base under a smooth dielectric coat, like glazed porcelain: "plastic" with
+ * `diffuse_reflectance` (3 numbers), `int_ior` and `ext_ior` (Mitsuba's defaults 1.49 and
+ * 1.000277; `nonlinear` false, the only value libppm supports). */
+PPM_API ppm_status ppm_scene_add_coated_material(ppm_scene scene, const double diffuse_reflectance[3], double int_ior,
+                                                 double ext_ior, uint32_t *out_material_id);
+
+/* Gives a material an image texture that replaces its colour: the effect of giving its colour
+ * parameter (`reflectance` of diffuse, `specular_reflectance` of conductor and roughconductor,
+ * `diffuse_reflectance` of plastic and roughplastic) the texture of ppm_scene_add_texture
+ * "bitmap" with `filename` = path and a `to_uv` of u = s * scale[0] + offset[0],
+ * v = t * scale[1] + offset[1] (the other bitmap parameters at their defaults: bilinear,
+ * repeat, sRGB-decoded). Unlike that, it changes a material made already, in place (its id
+ * and the geometries that use it stay), and takes no texture id. scale and offset may be NULL
+ * for (1, 1) and (0, 0). Errors: INVALID_ARGUMENT (bad id; glass (dielectric,
+ * thindielectric, roughdielectric), which has no colour; a blendbsdf or mask, whose parts
+ * are textured instead; non-finite or zero scale, non-finite offset; an image as refused by
+ * ppm_scene_add_texture), IO (unreadable or truncated file; the message names it), PARSE (as
+ * ppm_scene_add_texture). */
+PPM_API ppm_status ppm_scene_set_material_texture(ppm_scene scene, uint32_t material_id, const char *path,
+                                                  const double scale[2], const double offset[2]);
+
+/* Point light, `intensity` in W/sr per channel, power 4 pi intensity: "point" with `position`
+ * and `intensity`. */
+PPM_API ppm_status ppm_scene_add_point_light(ppm_scene scene, const double position[3], const double intensity[3],
+                                             uint32_t *out_light_id);
+/* Spot light: `intensity` in W/sr on the axis from position to target, full out to
+ * beam_width degrees and falling linearly in angle to 0 at cutoff_angle degrees
+ * (0 < beam_width <= cutoff_angle <= 90; Mitsuba's defaults: cutoff_angle 20, beam_width
+ * 3/4 of it). It is
+ * "spot" with `intensity`, `cutoff_angle`, `beam_width` and a `to_world` that takes the
+ * origin to position and +z along target - position (such as look_at(position, target, up)
+ * for any up: only the axis matters). The named call finds the axis as the difference of the
+ * points to_world gives for (0, 0, 1) and the origin, so for the same position and target
+ * the two axes may differ by the rounding of that difference. */
+PPM_API ppm_status ppm_scene_add_spot_light(ppm_scene scene, const double position[3], const double target[3],
+                                            const double intensity[3], double cutoff_angle, double beam_width,
+                                            uint32_t *out_light_id);
+
+/* Maps one texture across a whole patch set: patch i's (u, v) in [0, 1]^2 maps linearly onto
+ * [rects[4i], rects[4i+2]] x [rects[4i+1], rects[4i+3]] in texture space (4 * patch count
+ * finite doubles), the texture coordinates (s, t) of its hits. Errors: INVALID_ARGUMENT (not a
+ * patch geometry, NULL, NaN). */
+PPM_API ppm_status ppm_scene_set_patch_uv_rects(ppm_scene scene, uint32_t geom_id, const double *rects);
+
+/* Makes a quad, sphere, disk, cylinder or triangle mesh an area light (Mitsuba `area`; it has
+ * no named form and no light id): constant `radiance` (W/(m^2 sr) per channel) on the side
+ * the normal points to (quad: edge_u x edge_v; sphere and cylinder: outside; disk:
+ * axis_u x axis_v; mesh: the shading normal, i.e. the interpolated vertex normal where the
+ * mesh has normals, else the face normal (p1 - p0) x (p2 - p0)), reversed by
+ * ppm_scene_set_geometry_flip_normals. Power pi L A with A the exact area (a mesh's: the sum
+ * of its triangles'). A mesh light samples points uniformly in area (a table over its
+ * triangles, made when rendering starts) and shares the mesh's data without copying it.
+ * Black turns it off. Errors: INVALID_ARGUMENT (a Bezier patch set: patches cannot be area
+ * lights; negative, NaN or too large values). */
+PPM_API ppm_status ppm_scene_set_geometry_emission(ppm_scene scene, uint32_t geom_id, const double radiance[3]);
+
 /* ---------------------------------------------------------------------------------------- */
-/* Rendering: progressive photon mapping                                                     */
+/* Rendering: photon mapping and vertex connection and merging                               */
 /* ---------------------------------------------------------------------------------------- */
+
+/* A renderer renders a committed scene through a camera, one pass at a time
+ * (ppm_renderer_render_pass); the image is the estimate of all passes so far and converges as
+ * they grow. Its "mode" setting chooses the method:
+ *  - the photon modes: a pass is an eye pass (camera paths to their visible points, direct
+ *    light there by shadow rays) and a photon pass (photon paths from the lights, gathered at
+ *    the visible points within their radii):
+ *      "sppm"  stochastic progressive photon mapping (Hachisuka and Jensen 2009): a new
+ *              jittered camera path per pixel every pass; each pixel's radius shrinks with
+ *              the photons its earlier passes found;
+ *      "ppm"   progressive photon mapping (Hachisuka, Ogaki and Jensen 2008): the visible
+ *              points of the first pass, split at glass and coats, stay for every pass,
+ *              whose eye pass only estimates their direct light again;
+ *      "pppm"  probabilistic progressive photon mapping (Knaus and Zwicker 2011): SPPM's eye
+ *              pass, with a radius that depends on the pass index only;
+ *  - the bidirectional modes: a pass traces light subpaths (paths_per_pass of them), stores
+ *    their vertices and connects them to the camera (light tracing; not through a thin
+ *    lens), then one camera subpath per pixel, which samples the lights, connects to a light
+ *    subpath's vertices and merges with the light vertices within the pass's radius, every
+ *    technique weighted by multiple importance sampling:
+ *      "vcm"   vertex connection and merging (Georgiev et al. 2012): all of it; the default,
+ *              which had the least error at equal time on the benchmark scenes
+ *              (docs/bench/converge.md);
+ *      "bpt"   its connections only: bidirectional path tracing;
+ *      "vm"    its merging only, at the camera subpath's first non-specular vertex: photon
+ *              mapping on light subpaths, direct light included.
+ * pppm, vcm, bpt and vm are pass-independent: each pass stands alone, so passes may be
+ * rendered apart and merged (partial renders, below). */
 
 typedef struct ppm_renderer_t *ppm_renderer;
 
@@ -639,11 +721,14 @@ static inline void ppm_camera_v2_init(ppm_camera_v2 *camera) {
 }
 
 /* A renderer for a committed scene seen through `camera`. The caller owns the one reference
- * returned; the renderer holds one on the scene (and so on its context). Lights, materials
- * and textures are read now; later scene changes do not reach it. The scene may be queried
- * meanwhile but not changed. Errors: INVALID_ARGUMENT (NULL, a bad camera field naming it,
- * a geometry without a valid material, emission on a kind that cannot emit),
- * INVALID_OPERATION (scene not committed). */
+ * returned; the renderer holds one on the scene (and so on its context). Lights, materials,
+ * textures and emission are read now; later changes to them do not reach it. The scene may
+ * be queried while renderers of it exist. After a change to its geometry their passes fail
+ * (INVALID_OPERATION) until it is committed again. A renderer knows only the geometries the
+ * scene had when it was made: after adding one, make a new renderer, and run no pass on the
+ * old one. Errors: INVALID_ARGUMENT (NULL, a bad camera field naming it, a geometry without
+ * a valid material, emission on a kind that cannot emit), INVALID_OPERATION (scene not
+ * committed). */
 PPM_API ppm_status ppm_renderer_create(ppm_scene scene, const ppm_camera *camera, ppm_renderer *out_renderer);
 /* The same from an extensible camera; errors also as described at ppm_camera_v2. */
 PPM_API ppm_status ppm_renderer_create_v2(ppm_scene scene, const ppm_camera_v2 *camera, ppm_renderer *out_renderer);
@@ -658,47 +743,54 @@ PPM_API ppm_status ppm_renderer_retain(ppm_renderer renderer);
 PPM_API void ppm_renderer_release(ppm_renderer renderer);
 
 /* Settings (defaults):
- *   "mode"                  string "vcm" (the default: the least error at equal time on
- *                           the benchmark scenes of docs/bench/converge.md), "sppm"
- *                           (stochastic PPM, new eye pass each pass), "ppm"
- *                           (classic: hit points fixed by the first pass) or "pppm"
- *                           (probabilistic PPM: each pass's radius depends on its index
- *                           only, so passes render apart and merge; see partial renders),
- *                           "vcm" (vertex connection and merging: bidirectional path
- *                           tracing and photon merging under multiple importance
- *                           sampling, one camera subpath per pixel and pass, light
- *                           subpaths as photons_per_pass says; no light tracing
- *                           through a thin lens), "bpt" (its
- *                           connections only) or
- *                           "vm" (its merging only); vcm, bpt and vm are pass-independent
- *                           like pppm and do not use direct_lighting
- *                                                                              default "vcm"
+ *   "mode"                  string "sppm", "ppm", "pppm", "vcm", "bpt" or "vm": the method,
+ *                           described at the top of this section              default "vcm"
  *   "photons_per_pass"      int    photon paths (photon modes) or light subpaths
- *                           (vcm, bpt, vm) per pass, 1 .. 2^31; 0 = automatic:
+ *                           (bidirectional modes) per pass, 1 .. 2^31; 0 = automatic:
  *                           6 photon paths per pixel within [10^4, 2^22], or one
  *                           light subpath per pixel up to 2^18 (read "paths_per_pass")
- *                                                                              default 0
+ *                                                                             default 0
  *   "alpha"                 double radius reduction in (0, 1]                 default 2/3
- *   "initial_radius"        double scene units; 0 = automatic                 default 0
- *   "initial_radius_pixels" double automatic radius in pixel footprints > 0   default 1
- *   "max_depth"             int    scattering events per path, 1 .. 1000      default 16
+ *   "initial_radius"        double the first pass's gather or merge radius, in scene
+ *                           units in [0, 1e12]; 0 = automatic                 default 0
+ *   "initial_radius_pixels" double the automatic radius in pixel footprints, in (0, 1e6]:
+ *                           at each pixel's first visible point (photon modes), at the
+ *                           distance from the camera to the scene's centre
+ *                           (bidirectional modes)                             default 1
+ *   "max_depth"             int    scattering events per camera, photon or light path,
+ *                           1 .. 1000                                         default 16
  *   "seed"                  int    random sequence                            default 0
- *   "hit_point_search"      string "grid" (hashed) or "kdtree" (nanoflann)    default "grid"
- *   "direct_lighting"       int    1: light sources by shadow rays; 0: by photons default 1
+ *   "hit_point_search"      string "grid" (hashed) or "kdtree" (nanoflann): how photons
+ *                           find visible points; both find the same           default "grid"
+ *   "direct_lighting"       int    1: light sources by shadow rays; 0: by photons too
+ *                                                                             default 1
  *   "glossy_gather_alpha"   double rough lobes with alpha >= this are gathered at
  *                           visible points, narrower ones followed like mirrors, >= 0
- *                                                                              default 0.2
+ *                                                                             default 0.2
+ * The last three are the photon modes' only: the bidirectional modes store no visible
+ * points, and weigh next-event estimation against the other techniques themselves.
  * Typed settings as described at the top of this header. mode, seed, direct_lighting,
  * glossy_gather_alpha and the initial radius settings are fixed after the first pass
- * (INVALID_OPERATION), in the pass-independent modes ("pppm", "vcm", "bpt", "vm")
- * photons_per_pass, alpha and max_depth too; unknown
- * keys, wrong types and values out of range are INVALID_ARGUMENT. Read-only ints: "passes",
- * "photons_emitted", "paths_per_pass" (the paths a pass traces: photons_per_pass, or its
- * automatic count for this film and mode), "width", "height", "lights" (the light sources photons leave: point,
- * spot and area lights; 0 renders black); read-only doubles: "last_eye_pass_seconds",
- * "last_photon_pass_seconds" (wall clock), and "last_search_build_seconds", the part of the
- * eye pass spent building the hit point search. Thread safety: not during ppm_render_pass
- * of the same renderer; getters concurrently with other getters. */
+ * (INVALID_OPERATION), in the pass-independent modes photons_per_pass, alpha and max_depth
+ * too; unknown keys, wrong types and values out of range are INVALID_ARGUMENT.
+ * Read-only ints:
+ *   "passes"            passes completed (in a pass-independent mode: held, merged ones too)
+ *   "photons_emitted"   photon paths or light subpaths traced by those passes
+ *   "paths_per_pass"    the paths a pass traces: photons_per_pass, or its automatic count
+ *                       for this image and mode
+ *   "width", "height"   the image rendered (the crop window's size, if the camera has one)
+ *   "lights"            the light sources the renderer read from the scene: every light of
+ *                       ppm_scene_add_light and its shorthands, black ones included, and
+ *                       every geometry with non-black emission; 0 renders black
+ * Read-only doubles, the wall-clock seconds of the last completed pass:
+ *   "last_eye_pass_seconds"      photon modes: its eye pass, the search build included;
+ *                                bidirectional modes: the whole pass
+ *   "last_photon_pass_seconds"   photon modes: its photon pass; 0 in the bidirectional modes
+ *   "last_search_build_seconds"  photon modes: the part of the eye pass spent building the
+ *                                visible points' search; 0 in the bidirectional modes
+ * Thread safety: setters not during a pass of the same renderer; getters concurrently with
+ * other getters, and the read-only values also during a pass (the state after the last
+ * completed pass, zeros before the first). */
 PPM_API ppm_status ppm_renderer_set_int(ppm_renderer renderer, const char *key, int64_t value);
 PPM_API ppm_status ppm_renderer_set_double(ppm_renderer renderer, const char *key, double value);
 PPM_API ppm_status ppm_renderer_set_string(ppm_renderer renderer, const char *key, const char *value);
@@ -710,38 +802,52 @@ PPM_API ppm_status ppm_renderer_get_double(ppm_renderer renderer, const char *ke
 PPM_API ppm_status ppm_renderer_get_string(ppm_renderer renderer, const char *key, char *out, size_t capacity,
                                            size_t *out_length);
 
-/* Runs one pass on the context's threads: eye pass, photon pass (photons_per_pass photon
- * paths), statistics update. Deterministic: the image after n passes depends only on the
- * scene, camera and settings, not on the thread count. Errors: CANCELLED (ppm_renderer_cancel
- * was called before or during the pass; the pass is discarded and the image unchanged),
- * INVALID_OPERATION (another pass of this renderer is running, or the scene was modified),
- * OUT_OF_MEMORY. Different renderers may run passes at once (they share the context's
- * threads). */
+/* Runs one pass on the context's threads and adds it to the image. In the photon modes: an
+ * eye pass, a photon pass of paths_per_pass photon paths, and the update of every pixel's
+ * statistics (sppm, ppm) or of the pass sums (pppm); in the bidirectional modes:
+ * paths_per_pass light subpaths, then one camera subpath per pixel. In a pass-independent
+ * mode the pass rendered is the lowest index the renderer does not hold yet (merged
+ * partials count). Deterministic: the image after n passes depends only on the scene,
+ * camera and settings, not on the thread count. Errors: CANCELLED (ppm_renderer_cancel was
+ * called before or during the pass; the pass is discarded and the image unchanged),
+ * INVALID_OPERATION (another pass of this renderer is running, or the scene was changed and
+ * not committed again), OUT_OF_MEMORY, INVALID_ARGUMENT (NULL). Different renderers may run
+ * passes at once (they share the context's threads). */
+PPM_API ppm_status ppm_renderer_render_pass(ppm_renderer renderer);
+/* Alias of ppm_renderer_render_pass: the same function under its libppm 0.1 name. */
 PPM_API ppm_status ppm_render_pass(ppm_renderer renderer);
 
 /* Stops the running pass as soon as possible, or the next pass if none runs. Thread safe;
- * the only renderer call that may overlap ppm_render_pass besides the readers below.
+ * the only renderer call that may overlap a pass besides the readers below.
  * Errors: INVALID_ARGUMENT (NULL). */
 PPM_API ppm_status ppm_renderer_cancel(ppm_renderer renderer);
 
 /* Copies an image layer after the last completed pass into `out`, row-major from the
- * top-left pixel: "radiance" (3 floats per pixel: linear RGB radiance, W/(m^2 sr)),
- * "radius" (1 float: gather radius in scene units), "photons" (1 float: the pixel's
- * alpha-reduced photon count N). `count` is the number of floats `out` holds; it must be at
- * least width * height * channels. Errors: INVALID_ARGUMENT (NULL, unknown layer, count too
- * small). Thread safe, also during a pass. */
+ * top-left pixel (zeros before the first pass):
+ *   "radiance"  3 floats per pixel: linear RGB radiance, W/(m^2 sr);
+ *   "radius"    1 float, scene units: sppm and ppm: the pixel's gather radius now (the
+ *               largest of its visible points'); pppm: its gather radius, and the
+ *               bidirectional modes: the merge radius, as the mean over the passes;
+ *   "photons"   1 float: sppm and ppm: the pixel's alpha-reduced photon count N; pppm: the
+ *               photons its passes gathered; vcm and vm: the light vertices its passes
+ *               merged (0 in bpt, which does not merge).
+ * `count` is the number of floats `out` holds; it must be at least width * height *
+ * channels. Errors: INVALID_ARGUMENT (NULL, unknown layer, count too small). Thread safe,
+ * also during a pass. */
 PPM_API ppm_status ppm_renderer_get_layer(ppm_renderer renderer, const char *layer, float *out, size_t count);
 
 /* Checkpoints: the renderer's whole progressive state (pass count, photons emitted, every
- * pixel's statistics) in a versioned binary file, so that a long render can stop and go on
- * later. A render resumed from a checkpoint and run to n passes gives the same image, bit for
- * bit, as an uninterrupted render of n passes with the same scene, camera, settings and seed.
+ * pixel's statistics; in a pass-independent mode, once a pass has run, its partial render,
+ * below) in a versioned binary file, so that a long render can stop and go on later. A
+ * render resumed from a checkpoint and run to n passes gives the same image, bit for bit, as
+ * an uninterrupted render of n passes with the same scene, camera, settings and seed.
  *
  * save writes the state after the last completed pass atomically (a temporary file beside
  * `path`, then rename), so `path` holds either the old or the new checkpoint, never a torn
  * one; it may run during a pass. load replaces the state of a renderer that has not run a
- * pass yet; the checkpoint must come from the same scene, camera and fixed settings (mode,
- * seed, direct_lighting, initial radius), which it records.
+ * pass yet; the checkpoint must come from the same scene, camera and fixed settings, which
+ * it records (mode, seed, direct_lighting and the initial radius; a partial records the
+ * render's whole identity, below).
  * Errors: IO (cannot write or read `path`), PARSE (not a libppm checkpoint, another version,
  * truncated or corrupt: the message says which), INVALID_ARGUMENT (a checkpoint of another
  * scene, camera or settings: the message names what differs), INVALID_OPERATION (load after
@@ -751,26 +857,31 @@ PPM_API ppm_status ppm_renderer_save_checkpoint(ppm_renderer renderer, const cha
 PPM_API ppm_status ppm_renderer_load_checkpoint(ppm_renderer renderer, const char *path);
 
 /* Partial renders: passes of one render in a pass-independent mode ("pppm", "vcm", "bpt",
- * "vm"), rendered by any number of processes in any order, and merged exactly. In "pppm" mode
- * pass i uses the gather radius r_i^2 = r_0^2 prod_{k=1..i} (k - 1 + alpha) / k (Knaus and
- * Zwicker 2011), in the others the merge radius r_i = r_0 (i + 1)^((alpha - 1) / 2), and random numbers
- * drawn from (seed, i) only; the image is the mean of the passes' estimates, each rounded
- * once to a multiple of 2^-40 and summed as 128-bit integers. So merging the partials of
- * passes 0..N-1 gives the same bits as one process rendering N passes, whatever the split,
- * the order and the thread counts. A partial records the render's identity (image size,
- * camera, scene, mode, seed, direct_lighting, initial radius, alpha, photons_per_pass,
- * max_depth); partials of different renders or with a pass in common do not merge.
- * Checkpoints of a pass-independent render are partials, so ppm_renderer_load_checkpoint takes them. */
+ * "vm"), rendered by any number of processes in any order, and merged exactly. In "pppm"
+ * mode pass i uses the gather radius r_i^2 = r_0^2 prod_{k=1..i} (k - 1 + alpha) / k (Knaus
+ * and Zwicker 2011), in the others the merge radius r_i = r_0 (i + 1)^((alpha - 1) / 2), and
+ * random numbers drawn from (seed, i) only; the image is the mean of the passes' estimates,
+ * each rounded once to a multiple of 2^-40 and summed as 128-bit integers. So merging the
+ * partials of passes 0..N-1 gives the same bits as one process rendering N passes, whatever
+ * the split, the order and the thread counts. A partial records the render's identity
+ * (image size, camera, scene, mode, seed, direct_lighting, initial radius, alpha,
+ * paths_per_pass, max_depth, glossy_gather_alpha); partials of different renders or with a
+ * pass in common do not merge. Checkpoints of a pass-independent render are partials, so
+ * ppm_renderer_load_checkpoint takes them. */
 typedef struct ppm_partial_t *ppm_partial;
 
-/* Renders pass `pass_index` of a pass-independent render (ppm_render_pass renders the lowest index not
- * yet rendered). Errors as ppm_render_pass, and INVALID_OPERATION (another mode, or the pass
- * is rendered already), INVALID_ARGUMENT (NULL, pass_index >= 2^32). */
+/* Renders pass `pass_index` of a pass-independent render (ppm_renderer_render_pass renders
+ * the lowest index not yet rendered). Errors as ppm_renderer_render_pass, and
+ * INVALID_OPERATION (another mode, or the pass is rendered already), INVALID_ARGUMENT
+ * (pass_index >= 2^32). */
+PPM_API ppm_status ppm_renderer_render_pass_index(ppm_renderer renderer, uint64_t pass_index);
+/* Alias of ppm_renderer_render_pass_index: the same function under its first name. */
 PPM_API ppm_status ppm_render_pass_index(ppm_renderer renderer, uint64_t pass_index);
 /* The renderer's passes so far as a new partial (the caller owns the one reference), or
- * saved to `path` atomically. Errors: INVALID_OPERATION (not pass-independent, or no pass completed),
- * IO (save), INVALID_ARGUMENT (NULL). Thread safe, also during a pass (the state after the
- * last completed pass). */
+ * saved to `path` atomically. On failure *out_partial is set to NULL. Errors:
+ * INVALID_OPERATION (not pass-independent, or no pass completed), IO (save),
+ * INVALID_ARGUMENT (NULL). Thread safe, also during a pass (the state after the last
+ * completed pass). */
 PPM_API ppm_status ppm_renderer_get_partial(ppm_renderer renderer, ppm_partial *out_partial);
 PPM_API ppm_status ppm_renderer_save_partial(ppm_renderer renderer, const char *path);
 /* Adds a partial's passes to the renderer's (e.g. to go on rendering other passes, or to read
@@ -780,9 +891,10 @@ PPM_API ppm_status ppm_renderer_save_partial(ppm_renderer renderer, const char *
 PPM_API ppm_status ppm_renderer_merge_partial(ppm_renderer renderer, ppm_partial partial);
 
 /* A partial from a file written by ppm_renderer_save_partial / ppm_partial_save, or from
- * bytes of ppm_partial_serialize. Errors: IO (cannot read), PARSE (not a partial, another
+ * bytes of ppm_partial_serialize; the caller owns the one reference returned. On failure
+ * *out_partial is set to NULL. Errors: IO (cannot read), PARSE (not a partial, another
  * version, truncated or corrupt: the message names the file and what is wrong),
- * OUT_OF_MEMORY, INVALID_ARGUMENT (NULL). */
+ * OUT_OF_MEMORY, INVALID_ARGUMENT (NULL; data NULL with a nonzero size). */
 PPM_API ppm_status ppm_partial_load(const char *path, ppm_partial *out_partial);
 PPM_API ppm_status ppm_partial_load_memory(const void *data, size_t size, ppm_partial *out_partial);
 /* Writes the partial to `path` atomically. Errors: IO, INVALID_ARGUMENT (NULL). */
@@ -806,12 +918,14 @@ PPM_API void ppm_partial_release(ppm_partial partial);
 PPM_API ppm_status ppm_partial_get_int(ppm_partial partial, const char *key, int64_t *out_value);
 PPM_API ppm_status ppm_partial_set_int(ppm_partial partial, const char *key, int64_t value);
 /* The passes held, as sorted half-open ranges [first, end): out[2k], out[2k+1]. `capacity` is
- * the number of uint64_t that `out` holds (2 per range); *out_count gets the number of ranges.
- * `out` may be NULL when capacity is 0. Errors: INVALID_ARGUMENT (NULL, capacity too small). */
+ * the number of uint64_t that `out` holds (2 per range); *out_count gets the number of ranges,
+ * also when the call fails for a capacity too small, so that `out` may be NULL with capacity
+ * 0 to ask for the count. Errors: INVALID_ARGUMENT (NULL, capacity too small). */
 PPM_API ppm_status ppm_partial_get_passes(ppm_partial partial, uint64_t *out, size_t capacity, size_t *out_count);
-/* An image layer of the merged passes, as ppm_renderer_get_layer gives it: "radiance" (the mean
- * of the passes' estimates), "radius" (the mean gather radius) or "photons" (photons found in
- * all passes). Errors: INVALID_ARGUMENT (NULL, unknown layer, count too small). */
+/* An image layer of the merged passes, as ppm_renderer_get_layer gives it: "radiance" (the
+ * mean of the passes' estimates), "radius" (the mean gather or merge radius) or "photons"
+ * (the photons gathered or light vertices merged in all passes). Errors: INVALID_ARGUMENT
+ * (NULL, unknown layer, count too small). */
 PPM_API ppm_status ppm_partial_get_layer(ppm_partial partial, const char *layer, float *out, size_t count);
 
 /* ---------------------------------------------------------------------------------------- */
@@ -839,7 +953,7 @@ PPM_API ppm_status ppm_image_write(const char *path, const float *radiance, uint
                                    const ppm_image_layer *layers, size_t layer_count, double exposure);
 
 /* ---------------------------------------------------------------------------------------- */
-/* Scene files (JSON; the format is docs/scene-format.md)                                    */
+/* Scene files (JSON or Mitsuba 3 XML; the formats: docs/scene-format.md)                    */
 /* ---------------------------------------------------------------------------------------- */
 
 typedef struct ppm_scene_file_t *ppm_scene_file;

@@ -31,8 +31,13 @@ template <class Make> ppm_status make_partial(ppm_partial *out_partial, Make &&m
 
 extern "C" {
 
-ppm_status ppm_render_pass_index(ppm_renderer renderer, uint64_t pass_index) {
+ppm_status ppm_renderer_render_pass_index(ppm_renderer renderer, uint64_t pass_index) {
     return renderer_call(renderer, [&](ppm::Renderer &r) { r.render_pass_index(pass_index); });
+}
+
+// The first name of ppm_renderer_render_pass_index, exported for the programs that call it.
+ppm_status ppm_render_pass_index(ppm_renderer renderer, uint64_t pass_index) {
+    return ppm_renderer_render_pass_index(renderer, pass_index);
 }
 
 ppm_status ppm_renderer_get_partial(ppm_renderer renderer, ppm_partial *out_partial) {

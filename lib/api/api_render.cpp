@@ -279,9 +279,12 @@ ppm_status ppm_renderer_get_string(ppm_renderer renderer, const char *key, char 
     });
 }
 
-ppm_status ppm_render_pass(ppm_renderer renderer) {
+ppm_status ppm_renderer_render_pass(ppm_renderer renderer) {
     return renderer_call(renderer, [](ppm::Renderer &r) { r.render_pass(); });
 }
+
+// libppm 0.1's name of ppm_renderer_render_pass, exported for the programs built against it.
+ppm_status ppm_render_pass(ppm_renderer renderer) { return ppm_renderer_render_pass(renderer); }
 
 ppm_status ppm_renderer_cancel(ppm_renderer renderer) {
     return renderer_call(renderer, [](ppm::Renderer &r) { r.cancel(); });

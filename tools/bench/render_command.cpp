@@ -109,7 +109,7 @@ int run_render_command(const RenderOptions &options) {
                     check(ppm_renderer_set_int(r, "photons_per_pass", photons), "photons_per_pass");
                     std::vector<double> eye, photon, build;
                     for (int p = 0; p < o.passes; ++p) {
-                        check(ppm_render_pass(r), "ppm_render_pass");
+                        check(ppm_renderer_render_pass(r), "ppm_renderer_render_pass");
                         double e = 0, ph = 0, b = 0;
                         check(ppm_renderer_get_double(r, "last_eye_pass_seconds", &e), "get");
                         check(ppm_renderer_get_double(r, "last_search_build_seconds", &b), "get");

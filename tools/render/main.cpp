@@ -316,7 +316,7 @@ int render(const Options &options, SignalWatcher &signals) {
         if (budget > 0 && passes > first_pass && seconds_since(start) + last_pass_seconds > budget) break;
         const Clock::time_point pass_start = Clock::now();
         const ppm_status status =
-            partial ? ppm_render_pass_index(renderer, todo[next_todo]) : ppm_render_pass(renderer);
+            partial ? ppm_renderer_render_pass_index(renderer, todo[next_todo]) : ppm_renderer_render_pass(renderer);
         if (status == PPM_ERROR_CANCELLED) {
             stopped_early = true;
             break;

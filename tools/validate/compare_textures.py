@@ -74,7 +74,7 @@ def render_libppm(lib, path, passes, photons):
     check(ppm.ppm_scene_file_create_renderer(file, C.byref(renderer)))
     check(ppm.ppm_renderer_set_int(renderer, b"photons_per_pass", C.c_int64(photons)))
     for _ in range(passes):
-        check(ppm.ppm_render_pass(renderer))
+        check(ppm.ppm_renderer_render_pass(renderer))
     rgb = (C.c_float * (SIZE * SIZE * 3))()
     check(ppm.ppm_renderer_get_layer(renderer, b"radiance", rgb, C.c_size_t(SIZE * SIZE * 3)))
     ppm.ppm_renderer_release(renderer)

@@ -63,7 +63,7 @@ def render_libppm(lib_path, size, passes, photons):
     check(lib.ppm_renderer_create(scene, C.byref(cam), C.byref(renderer)), "renderer")
     check(lib.ppm_renderer_set_int(renderer, b"photons_per_pass", C.c_int64(photons)), "photons")
     for _ in range(passes):
-        check(lib.ppm_render_pass(renderer), "pass")
+        check(lib.ppm_renderer_render_pass(renderer), "pass")
     image = np.zeros((size, size, 3), dtype=np.float32)
     check(lib.ppm_renderer_get_layer(renderer, b"radiance", image.ctypes.data_as(C.POINTER(C.c_float)),
                                      C.c_size_t(image.size)), "layer")

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Progressive photon mapping (``ppm_renderer_*``)."""
+"""The renderer (``ppm_renderer_*``): photon mapping and vertex connection and merging."""
 from __future__ import annotations
 
 import dataclasses
@@ -31,7 +31,7 @@ _CAMERA_FIELDS = {f.name for f in dataclasses.fields(Camera)}
 
 
 class Renderer(Handle):
-    """A progressive photon-mapping renderer of a committed scene seen through a camera.
+    """A renderer of a committed scene seen through a camera, in one of the modes of ppm.h.
 
     >>> r = libppm.Renderer(scene, libppm.Camera(origin=(0, -5, 1), target=(0, 0, 1),
     ...                  up=(0, 0, 1), fov=40, width=320, height=240), photons_per_pass=100000)
@@ -47,8 +47,9 @@ class Renderer(Handle):
     are pass-independent, see :class:`libppm.Partial`),
     ``photons_per_pass``, ``alpha``, ``initial_radius``,
     ``initial_radius_pixels``, ``max_depth``, ``seed``, ``hit_point_search``
-    ("grid" | "kdtree"), ``direct_lighting`` (1: shadow rays, 0: photons only). mode, seed,
-    direct_lighting and the initial radius are fixed after the first pass.
+    ("grid" | "kdtree"), ``direct_lighting`` (1: shadow rays, 0: photons only),
+    ``glossy_gather_alpha``. mode, seed, direct_lighting, glossy_gather_alpha and the initial
+    radius are fixed after the first pass.
 
     The scene's lights, materials and textures are read at creation; later scene changes
     do not reach the renderer. It keeps the scene alive (``renderer.scene``).
@@ -139,7 +140,7 @@ class Renderer(Handle):
 
     # -- rendering ------------------------------------------------------------------------
     def render_pass(self) -> None:
-        """Runs one pass (eye pass, photon pass, statistics update) without the GIL.
+        """Runs one pass without the GIL (``ppm_renderer_render_pass``).
 
         Raises :class:`libppm.CancelledError` if :meth:`cancel` was called before or during
         it (the pass is then discarded).

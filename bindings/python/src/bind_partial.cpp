@@ -70,7 +70,7 @@ void bind_partial(nb::module_ &m) {
     m.def("render_pass_index", [](Renderer &r, uint64_t index) {
         auto renderer = r.borrow();
         nb::gil_scoped_release unlocked;
-        check(ppm_render_pass_index(renderer.get(), index));
+        check(ppm_renderer_render_pass_index(renderer.get(), index));
     });
     m.def("renderer_partial", [](Renderer &r) {
         ppm_partial p = nullptr;

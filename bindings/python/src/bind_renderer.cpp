@@ -54,7 +54,7 @@ void bind_renderer(nb::module_ &m) {
     cls.def("render_pass", [](Renderer &r) {
         auto renderer = r.borrow();
         nb::gil_scoped_release unlocked;
-        check(ppm_render_pass(renderer.get()));
+        check(ppm_renderer_render_pass(renderer.get()));
     });
     cls.def("cancel", [](Renderer &r) { check(ppm_renderer_cancel(r.get())); });
     cls.def("get_layer", [](Renderer &r, const std::string &layer, OutFloats out) {
