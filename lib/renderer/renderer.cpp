@@ -12,8 +12,8 @@
 namespace ppm {
 
 Renderer::Renderer(Scene &scene, const SceneShading &shading, const CameraSettings &camera)
-    : scene_(&scene), render_scene_(scene, shading), camera_settings_(camera), camera_(camera),
-      material_count_(shading.materials().size()), point_light_count_(shading.lights().size()),
+    : scene_(&scene), geometry_count_(scene.geometry_count()), render_scene_(scene, shading), camera_settings_(camera),
+      camera_(camera), material_count_(shading.materials().size()), point_light_count_(shading.lights().size()),
       film_(camera_.width(), camera_.height()) {
     const std::uint64_t pixels = static_cast<std::uint64_t>(camera_.width()) * camera_.height();
     if (pixels > (std::uint64_t(1) << 28))
@@ -70,6 +70,12 @@ void Renderer::require_mode(bool ModeTraits::*trait, const char *what) const {
 void Renderer::run_pass(std::uint64_t index) {
     if (!scene_->committed())
         fail(PPM_ERROR_INVALID_OPERATION, "the scene was changed after the renderer was created and is not committed");
+    // The renderer's materials, emission and lights are one per geometry of the scene it was
+    // made from: a geometry added since has none of them.
+    if (scene_->geometry_count() != geometry_count_)
+        fail(PPM_ERROR_INVALID_OPERATION, "the scene has " + std::to_string(scene_->geometry_count()) +
+                                              " geometries, not the " + std::to_string(geometry_count_) +
+                                              " it had when the renderer was created: create a new renderer");
     const auto check_cancel = [this] {
         if (cancel_requested_.exchange(false)) fail(PPM_ERROR_CANCELLED, "render pass cancelled");
     };

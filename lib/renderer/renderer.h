@@ -117,7 +117,8 @@ private:
     std::uint64_t camera_hash() const;
     std::uint64_t scene_hash() const;
 
-    Scene *scene_; // retained
+    Scene *scene_;               // retained
+    std::size_t geometry_count_; // of the scene when the renderer was made: what render_scene_ describes
     RenderScene render_scene_;
     CameraSettings camera_settings_;
     Camera camera_;
