@@ -6,6 +6,8 @@ Objects (:class:`Context`, :class:`Scene`, :class:`Renderer`, :class:`SceneFile`
 libppm handle: ``close()`` or a ``with`` block releases it, and a child keeps its parents
 alive. Arrays are numpy; failures raise :class:`Error` subclasses carrying libppm's message.
 """
+from typing import List
+
 from ._errors import (CancelledError, ClosedError, Error, FileError, FileNotFoundError,
                       InternalError, InvalidArgumentError, InvalidOperationError,
                       OutOfMemoryError, ParseError, Status, UnknownKeyError, UnsupportedError,
@@ -28,6 +30,13 @@ __version__: str = _core.version_string()
 INVALID_ID = _core.INVALID_ID
 
 
+def type_names(kind: str) -> List[str]:
+    """The types libppm renders of a kind: ``"material"``, ``"texture"``, ``"light"``,
+    ``"shape"`` (what :meth:`Scene.add_material` and the others and scene files accept) or
+    ``"mode"`` (the renderer's ``mode`` setting), in a fixed order."""
+    return list(_core.type_names(kind))
+
+
 def version() -> str:
     """Version string of the libppm actually loaded, "major.minor.patch"."""
     return _core.version_string()
@@ -39,5 +48,5 @@ __all__ = [
     "UnknownKeyError", "UnsupportedError", "Warning", "HIT_DTYPE", "RAY_DTYPE", "Hits", "Camera",
     "Context", "default_context", "Partial", "check_image_path", "write_image", "Renderer",
     "MaterialId", "Scene", "SceneFile", "TextureId", "load", "load_dict", "load_file", "load_string", "render", "Mesh",
-    "tessellate", "INVALID_ID", "version",
+    "tessellate", "INVALID_ID", "type_names", "version",
 ]

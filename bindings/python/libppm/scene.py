@@ -284,6 +284,23 @@ class Scene(Handle):
         of ``docs/scene-format.md``); area lights are :meth:`set_emission`. Returns its id."""
         return int(self._core_object.add_light(type, _params(params)))
 
+    def add_shape(self, type: str, **params: ParamValue) -> int:
+        """A shape of any type libppm renders, with Mitsuba 3's type and parameter names and
+        defaults (``docs/scene-format.md``): ``sphere``, ``rectangle``, ``disk``, ``cylinder``,
+        ``cube``, ``obj``, ``ply``, ``serialized``, and libppm's ``quad`` and ``bezier``; every
+        type takes ``to_world`` (a 4x4 transform) and ``bsdf`` (a :class:`MaterialId`)::
+
+            floor = scene.add_shape("rectangle", to_world=np.diag([5, 5, 1, 1]), bsdf=grey)
+
+        Arrays of points (``patches``: per patch 16 control points; ``uv_rects``) may have any
+        shape: they are passed in row-major order. Returns the geometry's id.
+        """
+        flat = {name: (np.ravel(np.asarray(value, dtype=np.float64))
+                       if name != "to_world" and not isinstance(value, (str, os.PathLike)) and np.ndim(value) >= 2
+                       else value)
+                for name, value in params.items()}
+        return int(self._core_object.add_shape(type, _params(flat)))
+
     def add_diffuse_material(self, reflectance: ColorLike = 0.5) -> MaterialId:
         """Lambertian material (Mitsuba ``diffuse``); RGB or grey reflectance in [0, 1]."""
         return MaterialId(self._core_object.add_diffuse_material(color(reflectance, "reflectance")))

@@ -201,6 +201,9 @@ void bind_scene(nb::module_ &m) {
     cls.def("add_light", [](Scene &s, const std::string &type, const std::vector<Param> &params) {
         return add_with_params(s, ppm_scene_add_light, type, params);
     });
+    cls.def("add_shape", [](Scene &s, const std::string &type, const std::vector<Param> &params) {
+        return add_with_params(s, ppm_scene_add_shape, type, params);
+    });
     cls.def("add_point_light", [](Scene &s, const Vec3 &position, const Vec3 &intensity) {
         return new_id(
             [&](uint32_t *id) { return ppm_scene_add_point_light(s.get(), position.data(), intensity.data(), id); });
