@@ -211,6 +211,13 @@ uint32_t add_mask(ppm_scene_t &scene, Params &p) {
     return scene.shading.add_material(Material::mask(inner, opacity, opacity_texture));
 }
 
+// Mitsuba 3 src/bsdfs/null.cpp: no surface at all; light passes straight through (the
+// boundary of an index-matched medium, or a shape that only holds an emitter).
+uint32_t add_null(ppm_scene_t &scene, Params &p) {
+    p.finish();
+    return add(scene, Bsdf::null());
+}
+
 struct MaterialType {
     const char *name;
     uint32_t (*add)(ppm_scene_t &, Params &);
@@ -228,6 +235,7 @@ const MaterialType kMaterialTypes[] = {
     {"roughplastic", add_roughplastic},
     {"blendbsdf", add_blendbsdf},
     {"mask", add_mask},
+    {"null", add_null},
 };
 
 } // namespace

@@ -11,32 +11,54 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <typeindex>
+#include <typeinfo>
 
 namespace ppm {
 
 namespace {
 
+// The area light of each geometry kind that can emit: one row per kind. A kind without a row
+// cannot be an area light (its emission is refused by name).
+struct AreaLightMaker {
+    std::type_index kind;
+    Light (*make)(const Geometry &g, const Rgb &emission);
+};
+
+template <class G> const typename G::Data &data_of(const Geometry &g) { return static_cast<const G &>(g).data(); }
+
+const AreaLightMaker kAreaLightMakers[] = {
+    {typeid(QuadGeometry),
+     [](const Geometry &g, const Rgb &emission) {
+         const QuadGeometry::Data &d = data_of<QuadGeometry>(g);
+         // Flipped: the same parallelogram with its edges swapped, so its normal reversed.
+         return g.flip_normals ? Light::quad(d.origin, d.edge_v, d.edge_u, emission)
+                               : Light::quad(d.origin, d.edge_u, d.edge_v, emission);
+     }},
+    {typeid(SphereGeometry),
+     [](const Geometry &g, const Rgb &emission) {
+         const SphereGeometry::Data &d = data_of<SphereGeometry>(g);
+         return Light::sphere(d.center, d.radius, emission);
+     }},
+    {typeid(DiskGeometry),
+     [](const Geometry &g, const Rgb &emission) {
+         const DiskGeometry::Data &d = data_of<DiskGeometry>(g);
+         return Light::disk(d.center, d.axis_u, d.axis_v, emission, g.flip_normals);
+     }},
+    {typeid(CylinderGeometry),
+     [](const Geometry &g, const Rgb &emission) {
+         const CylinderGeometry::Data &d = data_of<CylinderGeometry>(g);
+         return Light::cylinder(d.p0, d.p1, d.radius, emission, g.flip_normals);
+     }},
+    {typeid(MeshGeometry),
+     [](const Geometry &g, const Rgb &emission) {
+         return Light::mesh(static_cast<const MeshGeometry &>(g).shared_world(), emission, g.flip_normals);
+     }},
+};
+
 Light make_area_light(const Geometry &g, uint32_t geom_id, const Rgb &emission) {
-    const bool flip = g.flip_normals;
-    if (auto *quad = dynamic_cast<const QuadGeometry *>(&g)) {
-        const QuadGeometry::Data &d = quad->data();
-        // Flipped: the same parallelogram with its edges swapped, so its normal reversed.
-        return flip ? Light::quad(d.origin, d.edge_v, d.edge_u, emission)
-                    : Light::quad(d.origin, d.edge_u, d.edge_v, emission);
-    }
-    if (auto *sphere = dynamic_cast<const SphereGeometry *>(&g)) {
-        const SphereGeometry::Data &d = sphere->data();
-        return Light::sphere(d.center, d.radius, emission);
-    }
-    if (auto *disk = dynamic_cast<const DiskGeometry *>(&g)) {
-        const DiskGeometry::Data &d = disk->data();
-        return Light::disk(d.center, d.axis_u, d.axis_v, emission, flip);
-    }
-    if (auto *cylinder = dynamic_cast<const CylinderGeometry *>(&g)) {
-        const CylinderGeometry::Data &d = cylinder->data();
-        return Light::cylinder(d.p0, d.p1, d.radius, emission, flip);
-    }
-    if (auto *mesh = dynamic_cast<const MeshGeometry *>(&g)) return Light::mesh(mesh->shared_world(), emission, flip);
+    for (const AreaLightMaker &maker : kAreaLightMakers)
+        if (maker.kind == std::type_index(typeid(g))) return maker.make(g, emission);
     invalid_argument("geometry " + std::to_string(geom_id) + " (" + g.kind() +
                      ") emits light, but only quads, spheres, disks, cylinders and triangle meshes can be area lights");
 }
