@@ -6,15 +6,15 @@
 # message naming the file, the previous file byte for byte, and no temporary file. Also: a
 # film too large for the address space (ulimit -v) fails with a message naming the film.
 #
-#   bash test_fault_ppm_render.sh PPM_RENDER FAULT_SHIM PRELOAD_FIRST TEST_DATA_DIR
+#   bash test_fault_ppm_render.sh PPM_RENDER FAULT_SHIM TEST_DATA_DIR [PRELOAD_FIRST]
 #
-# PRELOAD_FIRST is the sanitizer runtime of a sanitized ppm-render (empty otherwise): it must
+# PRELOAD_FIRST is the sanitizer runtime of a sanitized ppm-render (absent otherwise): it must
 # come first in LD_PRELOAD, and the shim after it, so the runtime's wrappers call the shim's.
 set -uo pipefail
 render=$1
 shim=$2
-preload_first=$3
-data=$4
+data=$3
+preload_first=${4:-}
 work=$(mktemp -d "${TMPDIR:-/tmp}/ppm-fault-render.XXXXXX")
 trap 'chmod -R u+w "$work"; rm -rf "$work"' EXIT
 work=$(cd "$work" && pwd -P) # the shim matches paths with symbolic links resolved

@@ -5,7 +5,7 @@
 # (or starting over when none was written yet) gives the image of an uninterrupted render, bit
 # for bit, on another thread count.
 #
-#   bash test_sigkill_resume.sh PPM_RENDER FAULT_SHIM PRELOAD_FIRST TEST_DATA_DIR
+#   bash test_sigkill_resume.sh PPM_RENDER FAULT_SHIM TEST_DATA_DIR [PRELOAD_FIRST]
 #
 # The moments: files can only be torn while they are written, so the kills land on the file
 # system calls (through the fault shim in kill mode), chosen at random (seeded) among all the
@@ -15,8 +15,8 @@
 set -uo pipefail
 render=$1
 shim=$2
-preload_first=$3
-data=$4
+data=$3
+preload_first=${4:-}
 work=$(mktemp -d "${TMPDIR:-/tmp}/ppm-sigkill.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 work=$(cd "$work" && pwd -P) # the shim matches paths with symbolic links resolved

@@ -1,33 +1,34 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "bench_scenes.h"
-
-#include "check_status.h"
+#include "common/status.h"
 
 #include <cmath>
 #include <stdexcept>
 
 namespace bench {
 
+using ppm_tools::check_with_status;
+
 namespace {
 
 uint32_t diffuse(ppm_scene scene, double r, double g, double b) {
     const double rgb[3] = {r, g, b};
     uint32_t id = 0;
-    check(ppm_scene_add_diffuse_material(scene, rgb, &id), "ppm_scene_add_diffuse_material");
+    check_with_status(ppm_scene_add_diffuse_material(scene, rgb, &id), "ppm_scene_add_diffuse_material");
     return id;
 }
 
 void sphere(ppm_scene scene, double radius, double x, double y, double z, uint32_t material) {
     const double c[3] = {x, y, z};
     uint32_t id = 0;
-    check(ppm_scene_add_sphere(scene, c, radius, &id), "ppm_scene_add_sphere");
-    check(ppm_scene_set_geometry_material(scene, id, material), "ppm_scene_set_geometry_material");
+    check_with_status(ppm_scene_add_sphere(scene, c, radius, &id), "ppm_scene_add_sphere");
+    check_with_status(ppm_scene_set_geometry_material(scene, id, material), "ppm_scene_set_geometry_material");
 }
 
 uint32_t quad(ppm_scene scene, const double o[3], const double u[3], const double v[3], uint32_t material) {
     uint32_t id = 0;
-    check(ppm_scene_add_quad(scene, o, u, v, &id), "ppm_scene_add_quad");
-    check(ppm_scene_set_geometry_material(scene, id, material), "ppm_scene_set_geometry_material");
+    check_with_status(ppm_scene_add_quad(scene, o, u, v, &id), "ppm_scene_add_quad");
+    check_with_status(ppm_scene_set_geometry_material(scene, id, material), "ppm_scene_set_geometry_material");
     return id;
 }
 
@@ -52,14 +53,14 @@ void build_smallppm(ppm_scene s, ppm_camera &camera, int w, int h) {
     sphere(s, 1e5, 50, -1e5 + 81.6, 81.6, diffuse(s, .75, .75, .75)); // top
     const double white[3] = {.999, .999, .999};
     uint32_t mirror = 0, glass = 0;
-    check(ppm_scene_add_mirror_material(s, white, &mirror), "ppm_scene_add_mirror_material");
-    check(ppm_scene_add_dielectric_material(s, 1.5, 1.0, &glass), "ppm_scene_add_dielectric_material");
+    check_with_status(ppm_scene_add_mirror_material(s, white, &mirror), "ppm_scene_add_mirror_material");
+    check_with_status(ppm_scene_add_dielectric_material(s, 1.5, 1.0, &glass), "ppm_scene_add_dielectric_material");
     sphere(s, 16.5, 27, 16.5, 47, mirror);
     sphere(s, 16.5, 73, 16.5, 88, glass);
     sphere(s, 8.5, 50, 8.5, 60, diffuse(s, .999, .999, .999));
     // smallppm emits photons of flux 2500 * 4 pi each from a point: intensity 2500 W/sr.
     const double light[3] = {50, 60, 85}, intensity[3] = {2500, 2500, 2500};
-    check(ppm_scene_add_point_light(s, light, intensity, nullptr), "ppm_scene_add_point_light");
+    check_with_status(ppm_scene_add_point_light(s, light, intensity, nullptr), "ppm_scene_add_point_light");
     // Camera at (50, 48, 295.6) looking along (0, -0.042612, -1); its image plane half-width
     // is 0.5 * 0.5135 * w / h, so the horizontal fov is 2 atan(0.25675 w / h).
     const double origin[3] = {50, 48, 295.6}, target[3] = {50, 48 - 0.042612, 294.6}, up[3] = {0, 1, 0};
@@ -83,13 +84,13 @@ void build_teapot_glass(ppm_scene s, ppm_camera &camera, const std::string &teap
     const double light_o[3] = {-1.5, -1.5, 9.99}, lx[3] = {3, 0, 0}, ly[3] = {0, 3, 0};
     const uint32_t light = quad(s, light_o, ly, lx, white);
     const double radiance[3] = {12, 12, 12};
-    check(ppm_scene_set_geometry_emission(s, light, radiance), "ppm_scene_set_geometry_emission");
+    check_with_status(ppm_scene_set_geometry_emission(s, light, radiance), "ppm_scene_set_geometry_emission");
     uint32_t glass = 0, pot = 0;
-    check(ppm_scene_add_dielectric_material(s, 1.5, 1.0, &glass), "ppm_scene_add_dielectric_material");
-    check(ppm_scene_load_bpt(s, teapot.c_str(), &pot), "ppm_scene_load_bpt");
-    check(ppm_scene_set_geometry_material(s, pot, glass), "ppm_scene_set_geometry_material");
+    check_with_status(ppm_scene_add_dielectric_material(s, 1.5, 1.0, &glass), "ppm_scene_add_dielectric_material");
+    check_with_status(ppm_scene_load_bpt(s, teapot.c_str(), &pot), "ppm_scene_load_bpt");
+    check_with_status(ppm_scene_set_geometry_material(s, pot, glass), "ppm_scene_set_geometry_material");
     const double m[16] = {1.2, 0, 0, -0.3, 0, 1.2, 0, 0, 0, 0, 1.2, 0.001, 0, 0, 0, 1};
-    check(ppm_scene_set_geometry_transform(s, pot, m), "ppm_scene_set_geometry_transform");
+    check_with_status(ppm_scene_set_geometry_transform(s, pot, m), "ppm_scene_set_geometry_transform");
     const double origin[3] = {0, -19, 4.6}, target[3] = {0, 0, 3.6}, up[3] = {0, 0, 1};
     set_camera(camera, origin, target, up, 38, w, h);
 }
@@ -99,14 +100,14 @@ void build_teapot_glass(ppm_scene s, ppm_camera &camera, const std::string &teap
 BenchScene build_bench_scene(ppm_context context, const std::string &name, const std::string &teapot_path, int width,
                              int height) {
     BenchScene b;
-    check(ppm_scene_create(context, &b.scene), "ppm_scene_create");
+    check_with_status(ppm_scene_create(context, b.scene.out()), "ppm_scene_create");
     if (name == "smallppm")
         build_smallppm(b.scene, b.camera, width, height);
     else if (name == "teapot-glass")
         build_teapot_glass(b.scene, b.camera, teapot_path, width, height);
     else
         throw std::runtime_error("unknown scene '" + name + "' (scenes: smallppm, teapot-glass)");
-    check(ppm_scene_commit(b.scene), "ppm_scene_commit");
+    check_with_status(ppm_scene_commit(b.scene), "ppm_scene_commit");
     return b;
 }
 

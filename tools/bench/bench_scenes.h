@@ -8,12 +8,14 @@
 
 #include <ppm/ppm.h>
 
+#include "common/handle.h"
+
 #include <string>
 
 namespace bench {
 
 struct BenchScene {
-    ppm_scene scene = nullptr;
+    ppm_tools::Scene scene;
     ppm_camera camera{};
 };
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ray_sets.h"
 
+#include "common/status.h"
 #include "patch_topology.h"
 #include "rng.h"
 
@@ -326,8 +327,7 @@ RaySet leaving_rays(const ref::Intersector &reference, const Bounds &box, size_t
             }
             hit.p_error = tolerance * diagonal;
             ppm_ray ray;
-            if (ppm_hit_spawn_ray(&hit, s.dir, &ray) != PPM_OK)
-                throw std::runtime_error(std::string("ppm_hit_spawn_ray: ") + ppm_last_error_message());
+            ppm_tools::check(ppm_hit_spawn_ray(&hit, s.dir, &ray), "ppm_hit_spawn_ray");
             batch.rays.push_back(ray);
         }
         return batch;

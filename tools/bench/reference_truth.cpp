@@ -13,7 +13,7 @@ namespace {
 
 using ref::real;
 
-// The test suite's definition (tests/test_teapot_reference.cpp): a root is robust when the
+// The test suite's definition (tests/geometry/test_teapot_reference.cpp): a root is robust when the
 // ray dips through the surface deeper than 1e-15 of the diagonal (~20 ulps of the
 // coordinates), or sits on a collapsed edge. A ray tangent in real arithmetic, rounded to
 // double, crosses or misses by ~1e-17: no double-precision method can tell which.

@@ -2,7 +2,8 @@
 #include "render_command.h"
 
 #include "bench_scenes.h"
-#include "check_status.h"
+#include "common/handle.h"
+#include "common/status.h"
 #include "data_files.h"
 
 #include <ppm/ppm.h>
@@ -16,6 +17,8 @@
 #include <vector>
 
 namespace bench {
+
+using ppm_tools::check_with_status;
 
 namespace {
 
@@ -38,7 +41,7 @@ double median(std::vector<double> v) {
 
 void write_pfm(const std::string &path, ppm_renderer renderer, int w, int h) {
     std::vector<float> rgb(static_cast<size_t>(w) * h * 3);
-    check(ppm_renderer_get_layer(renderer, "radiance", rgb.data(), rgb.size()), "ppm_renderer_get_layer");
+    check_with_status(ppm_renderer_get_layer(renderer, "radiance", rgb.data(), rgb.size()), "ppm_renderer_get_layer");
     std::FILE *f = std::fopen(path.c_str(), "wb");
     if (!f) throw std::runtime_error("cannot write " + path);
     std::fprintf(f, "PF\n%d %d\n-1.0\n", w, h);
@@ -91,9 +94,9 @@ int run_render_command(const RenderOptions &options) {
         RenderOptions o = options;
         if (std::find(o.scenes.begin(), o.scenes.end(), "teapot-glass") != o.scenes.end())
             o.teapot = input_or_data_file(o.teapot, "teapot.bpt", "--teapot");
-        ppm_context context = nullptr;
-        check(ppm_context_create(&context), "ppm_context_create");
-        check(ppm_context_set_int(context, "threads", o.threads), "ppm_context_set_int");
+        ppm_tools::Context context;
+        check_with_status(ppm_context_create(context.out()), "ppm_context_create");
+        check_with_status(ppm_context_set_int(context, "threads", o.threads), "ppm_context_set_int");
         std::printf("render benchmark: %d x %d, %d passes per configuration, threads %d (0 = all)\n", o.width, o.height,
                     o.passes, o.threads);
         std::printf("%-13s %-7s %10s %10s %12s %14s %10s %10s\n", "scene", "search", "photons", "eye_s", "photon_s",
@@ -103,18 +106,19 @@ int run_render_command(const RenderOptions &options) {
             std::vector<double> rates;
             for (long photons : o.photon_counts)
                 for (const std::string &search : o.searches) {
-                    ppm_renderer r = nullptr;
-                    check(ppm_renderer_create(bs.scene, &bs.camera, &r), "ppm_renderer_create");
-                    check(ppm_renderer_set_string(r, "hit_point_search", search.c_str()), "hit_point_search");
-                    check(ppm_renderer_set_int(r, "photons_per_pass", photons), "photons_per_pass");
+                    ppm_tools::Renderer r;
+                    check_with_status(ppm_renderer_create(bs.scene, &bs.camera, r.out()), "ppm_renderer_create");
+                    check_with_status(ppm_renderer_set_string(r, "hit_point_search", search.c_str()),
+                                      "hit_point_search");
+                    check_with_status(ppm_renderer_set_int(r, "photons_per_pass", photons), "photons_per_pass");
                     std::vector<double> eye, photon, build;
                     for (int p = 0; p < o.passes; ++p) {
-                        check(ppm_renderer_render_pass(r), "ppm_renderer_render_pass");
+                        check_with_status(ppm_renderer_render_pass(r), "ppm_renderer_render_pass");
                         double e = 0, ph = 0, b = 0;
-                        check(ppm_renderer_get_double(r, "last_eye_pass_seconds", &e), "get");
-                        check(ppm_renderer_get_double(r, "last_search_build_seconds", &b), "get");
+                        check_with_status(ppm_renderer_get_double(r, "last_eye_pass_seconds", &e), "get");
+                        check_with_status(ppm_renderer_get_double(r, "last_search_build_seconds", &b), "get");
                         build.push_back(b);
-                        check(ppm_renderer_get_double(r, "last_photon_pass_seconds", &ph), "get");
+                        check_with_status(ppm_renderer_get_double(r, "last_photon_pass_seconds", &ph), "get");
                         eye.push_back(e);
                         photon.push_back(ph);
                     }
@@ -125,14 +129,11 @@ int run_render_command(const RenderOptions &options) {
                     if (photons == o.photon_counts.back()) rates.push_back(rate);
                     if (!o.image_dir.empty() && photons == o.photon_counts.back())
                         write_pfm(o.image_dir + "/" + name + "-" + search + ".pfm", r, o.width, o.height);
-                    ppm_renderer_release(r);
                 }
             if (rates.size() == 2)
                 std::printf("%-13s photon paths/s, %s / %s: %.2f\n", name.c_str(), o.searches[0].c_str(),
                             o.searches[1].c_str(), rates[0] / rates[1]);
-            ppm_scene_release(bs.scene);
         }
-        ppm_context_release(context);
         return 0;
     } catch (const std::exception &e) {
         std::fprintf(stderr, "ppm-bench render: %s\n", e.what());

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // libppm's exact intersector, through the public C API only.
-#include "check_status.h"
+#include "common/handle.h"
+#include "common/status.h"
 #include "measure.h"
 #include "method.h"
 #include "ray_sets.h"
@@ -11,6 +12,8 @@
 #include <stdexcept>
 
 namespace bench {
+
+using ppm_tools::check_with_status;
 
 namespace {
 
@@ -40,17 +43,19 @@ public:
 
     BuildMemory build(int threads) override {
         release();
-        check(ppm_context_create(&context_), "ppm_context_create");
+        check_with_status(ppm_context_create(context_.out()), "ppm_context_create");
         // The context's Embree device and worker pool are not part of the structure.
         MemoryDelta memory;
-        check(ppm_context_set_int(context_, "threads", threads), "ppm_context_set_int(threads)");
-        check(ppm_scene_create(context_, &scene_), "ppm_scene_create");
-        check(ppm_scene_set_double(scene_, "tolerance", info_.tolerance), "ppm_scene_set_double(tolerance)");
+        check_with_status(ppm_context_set_int(context_, "threads", threads), "ppm_context_set_int(threads)");
+        check_with_status(ppm_scene_create(context_, scene_.out()), "ppm_scene_create");
+        check_with_status(ppm_scene_set_double(scene_, "tolerance", info_.tolerance),
+                          "ppm_scene_set_double(tolerance)");
         if (presplit_ > 0)
-            check(ppm_scene_set_double(scene_, "patch_presplit", presplit_), "ppm_scene_set_double(patch_presplit)");
-        check(ppm_scene_add_bezier_patches(scene_, control_points_.data(), info_.primitives, nullptr),
-              "ppm_scene_add_bezier_patches");
-        check(ppm_scene_commit(scene_), "ppm_scene_commit");
+            check_with_status(ppm_scene_set_double(scene_, "patch_presplit", presplit_),
+                              "ppm_scene_set_double(patch_presplit)");
+        check_with_status(ppm_scene_add_bezier_patches(scene_, control_points_.data(), info_.primitives, nullptr),
+                          "ppm_scene_add_bezier_patches");
+        check_with_status(ppm_scene_commit(scene_), "ppm_scene_commit");
         BuildMemory m;
         m.structure_bytes = memory.take();
         m.array_bytes = control_points_.size() * sizeof(double);
@@ -58,10 +63,8 @@ public:
     }
 
     void release() override {
-        ppm_scene_release(scene_);
-        ppm_context_release(context_);
-        scene_ = nullptr;
-        context_ = nullptr;
+        scene_.reset();
+        context_.reset();
     }
 
     void trace(const std::vector<ppm_ray> &rays, size_t begin, size_t end, Trace &out) const override {
@@ -71,7 +74,8 @@ public:
         std::vector<ppm_hit> hits(std::min(batch, end - begin));
         for (size_t first = begin; first < end; first += batch) {
             const size_t count = std::min(batch, end - first);
-            check(ppm_scene_intersect(scene_, rays.data() + first, count, hits.data()), "ppm_scene_intersect");
+            check_with_status(ppm_scene_intersect(scene_, rays.data() + first, count, hits.data()),
+                              "ppm_scene_intersect");
             for (size_t k = 0; k < count; ++k) {
                 const ppm_hit &hit = hits[k];
                 if (hit.geom_id == PPM_INVALID_ID) continue;
@@ -90,8 +94,8 @@ private:
     std::vector<double> control_points_;
     int presplit_; // 0: libppm's default
     MethodInfo info_;
-    ppm_context context_ = nullptr;
-    ppm_scene scene_ = nullptr;
+    ppm_tools::Context context_;
+    ppm_tools::Scene scene_;
 };
 
 } // namespace

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "tessellate.h"
 
-#include "check_status.h"
+#include "common/handle.h"
+#include "common/status.h"
 #include "measure.h"
 #include "ray_sets.h"
 
@@ -12,36 +13,31 @@
 
 namespace bench {
 
-namespace {
-
-struct MeshHandle {
-    ppm_mesh mesh = nullptr;
-    ~MeshHandle() { ppm_mesh_release(mesh); }
-};
-
-} // namespace
+using ppm_tools::check_with_status;
 
 Mesh tessellate(const std::vector<double> &control_points, int grid, double relative_tolerance, double diagonal) {
     Mesh out;
     out.grid = grid;
     out.relative_tolerance = grid > 0 ? 0 : relative_tolerance;
     out.label = grid > 0 ? "N" + std::to_string(grid) : "adaptive-" + format_number(relative_tolerance);
-    MeshHandle h;
+    ppm_tools::Mesh mesh;
     Stopwatch clock;
-    check(ppm_tessellate_patches(control_points.data(), control_points.size() / 48,
-                                 grid > 0 ? 0.0 : relative_tolerance * diagonal, uint32_t(grid), &h.mesh),
-          "ppm_tessellate_patches");
+    check_with_status(ppm_tessellate_patches(control_points.data(), control_points.size() / 48,
+                                             grid > 0 ? 0.0 : relative_tolerance * diagonal, uint32_t(grid),
+                                             mesh.out()),
+                      "ppm_tessellate_patches");
     out.seconds = clock.wall_seconds();
 
     const double *positions = nullptr, *normals = nullptr;
     const uint32_t *indices = nullptr, *patches = nullptr, *welded = nullptr;
     size_t vertex_count = 0, triangle_count = 0, welded_count = 0;
     double deviation = 0;
-    check(ppm_mesh_get_vertices(h.mesh, &positions, &normals, nullptr, &vertex_count), "ppm_mesh_get_vertices");
-    check(ppm_mesh_get_triangles(h.mesh, &indices, &triangle_count), "ppm_mesh_get_triangles");
-    check(ppm_mesh_get_triangle_patches(h.mesh, &patches), "ppm_mesh_get_triangle_patches");
-    check(ppm_mesh_get_welded_vertices(h.mesh, &welded, &welded_count), "ppm_mesh_get_welded_vertices");
-    check(ppm_mesh_get_double(h.mesh, "max_deviation", &deviation), "ppm_mesh_get_double");
+    check_with_status(ppm_mesh_get_vertices(mesh, &positions, &normals, nullptr, &vertex_count),
+                      "ppm_mesh_get_vertices");
+    check_with_status(ppm_mesh_get_triangles(mesh, &indices, &triangle_count), "ppm_mesh_get_triangles");
+    check_with_status(ppm_mesh_get_triangle_patches(mesh, &patches), "ppm_mesh_get_triangle_patches");
+    check_with_status(ppm_mesh_get_welded_vertices(mesh, &welded, &welded_count), "ppm_mesh_get_welded_vertices");
+    check_with_status(ppm_mesh_get_double(mesh, "max_deviation", &deviation), "ppm_mesh_get_double");
     out.deviation = deviation / diagonal;
 
     out.positions.assign(3 * welded_count, 0.0);

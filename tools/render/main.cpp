@@ -3,6 +3,8 @@
 // rewriting the image atomically as it converges, with checkpoints to stop and resume.
 #include <ppm/ppm.h>
 
+#include "common/handle.h"
+#include "common/status.h"
 #include "image_writer.h"
 #include "options.h"
 #include "progress.h"
@@ -16,6 +18,7 @@
 #include <iterator>
 #include <mutex>
 #include <new>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -28,15 +31,9 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-// A failed libppm call (a bad scene, setting or checkpoint, or a failure at run time): exit
-// status 2, as for every runtime error (STYLE.md: 1 is for usage errors).
-struct ApiError {
-    std::string message;
-};
-
-void check(ppm_status status, const std::string &what = "") {
-    if (status != PPM_OK) throw ApiError{(what.empty() ? "" : what + ": ") + ppm_last_error_message()};
-}
+// A failed libppm call (a bad scene, setting or checkpoint, or a failure at run time) and
+// every other runtime error end with exit status 2 (STYLE.md: 1 is for usage errors).
+using ppm_tools::check;
 
 // --set KEY=VALUE: numbers through set_double (which takes integer keys with whole values),
 // anything else as a string; the library checks keys and ranges.
@@ -78,10 +75,10 @@ void create_renderer(ppm_scene_file file, const Options &options, ppm_renderer *
     }
     if (options.cropped()) {
         if (options.crop[2] > camera.width || options.crop[3] > camera.height)
-            throw ApiError{"--crop " + std::to_string(options.crop[0]) + "," + std::to_string(options.crop[1]) + "," +
-                           std::to_string(options.crop[2]) + "," + std::to_string(options.crop[3]) +
-                           " reaches beyond the image of " + std::to_string(camera.width) + " x " +
-                           std::to_string(camera.height) + " pixels"};
+            throw std::runtime_error("--crop " + std::to_string(options.crop[0]) + "," +
+                                     std::to_string(options.crop[1]) + "," + std::to_string(options.crop[2]) + "," +
+                                     std::to_string(options.crop[3]) + " reaches beyond the image of " +
+                                     std::to_string(camera.width) + " x " + std::to_string(camera.height) + " pixels");
         camera.crop_x0 = options.crop[0];
         camera.crop_y0 = options.crop[1];
         camera.crop_x1 = options.crop[2];
@@ -103,8 +100,9 @@ Image read_image(ppm_renderer renderer, const Options &options) {
         for (const std::string &name : options.layers) image.layers.push_back(Layer{name, std::vector<float>(pixels)});
     } catch (const std::bad_alloc &) {
         const std::size_t floats = pixels * (3 + options.layers.size());
-        throw ApiError{"out of memory for the image of " + std::to_string(width) + " x " + std::to_string(height) +
-                       " pixels: " + std::to_string(floats * sizeof(float)) + " bytes"};
+        throw std::runtime_error("out of memory for the image of " + std::to_string(width) + " x " +
+                                 std::to_string(height) + " pixels: " + std::to_string(floats * sizeof(float)) +
+                                 " bytes");
     }
     check(ppm_renderer_get_layer(renderer, "radiance", image.radiance.data(), image.radiance.size()));
     for (Layer &layer : image.layers)
@@ -132,14 +130,12 @@ std::vector<uint64_t> passes_to_render(ppm_renderer renderer, uint64_t first, ui
     int64_t passes = 0;
     check(ppm_renderer_get_int(renderer, "passes", &passes));
     if (passes > 0) {
-        ppm_partial partial = nullptr;
-        check(ppm_renderer_get_partial(renderer, &partial));
+        ppm_tools::Partial partial;
+        check(ppm_renderer_get_partial(renderer, partial.out()));
         size_t count = 0;
-        ppm_status status = ppm_partial_get_passes(partial, nullptr, 0, &count);
+        check(ppm_partial_get_passes(partial, nullptr, 0, &count));
         held.resize(2 * count);
-        if (status == PPM_OK) status = ppm_partial_get_passes(partial, held.data(), held.size(), &count);
-        ppm_partial_release(partial);
-        check(status);
+        check(ppm_partial_get_passes(partial, held.data(), held.size(), &count));
     }
     std::vector<uint64_t> todo;
     for (uint64_t pass = first; pass < end; ++pass) {
@@ -160,12 +156,10 @@ void save_state(ppm_renderer renderer, const Options &options, uint64_t pass_tot
     int64_t passes = 0;
     check(ppm_renderer_get_int(renderer, "passes", &passes));
     if (passes == 0) return; // nothing to save yet
-    ppm_partial partial = nullptr;
-    check(ppm_renderer_get_partial(renderer, &partial), "partial");
-    ppm_status status = ppm_partial_set_int(partial, "pass_total", static_cast<int64_t>(pass_total));
-    if (status == PPM_OK) status = ppm_partial_save(partial, options.partial.c_str());
-    ppm_partial_release(partial);
-    check(status, "--partial");
+    ppm_tools::Partial partial;
+    check(ppm_renderer_get_partial(renderer, partial.out()), "partial");
+    check(ppm_partial_set_int(partial, "pass_total", static_cast<int64_t>(pass_total)), "--partial");
+    check(ppm_partial_save(partial, options.partial.c_str()), "--partial");
 }
 
 // Cancels the renderer when the time budget runs out, unless stopped first.
@@ -202,24 +196,13 @@ private:
 };
 
 int render(const Options &options, SignalWatcher &signals) {
-    ppm_context context = nullptr;
-    ppm_scene_file file = nullptr;
-    ppm_renderer renderer = nullptr;
-    struct Release {
-        ppm_context &c;
-        ppm_scene_file &f;
-        ppm_renderer &r;
-        ~Release() {
-            ppm_renderer_release(r);
-            ppm_scene_file_release(f);
-            ppm_context_release(c);
-        }
-    } release{context, file, renderer};
-
-    check(ppm_context_create(&context), "creating the context");
+    ppm_tools::Context context;
+    ppm_tools::SceneFile file;
+    ppm_tools::Renderer renderer;
+    check(ppm_context_create(context.out()), "creating the context");
     if (options.threads > 0) check(ppm_context_set_int(context, "threads", options.threads), "--threads");
-    load_scene_file(context, options, &file);
-    create_renderer(file, options, &renderer);
+    load_scene_file(context, options, file.out());
+    create_renderer(file, options, renderer.out());
     // Partial renders are pass-independent: pppm unless the scene names another such mode
     // (--set mode=... is applied below).
     if (options.partial_render()) {
@@ -244,10 +227,10 @@ int render(const Options &options, SignalWatcher &signals) {
                                                : 16;
 
     if (options.partial_render() && target == 0)
-        throw ApiError{"--partial needs a pass count (--passes N, or integrator.passes in the scene)"};
+        throw std::runtime_error("--partial needs a pass count (--passes N, or integrator.passes in the scene)");
     if (options.pass_end > 0 && static_cast<uint64_t>(options.pass_end) > target)
-        throw ApiError{"--pass-range ends at pass " + std::to_string(options.pass_end - 1) + ", beyond the " +
-                       std::to_string(target) + " passes of the render"};
+        throw std::runtime_error("--pass-range ends at pass " + std::to_string(options.pass_end - 1) + ", beyond the " +
+                                 std::to_string(target) + " passes of the render");
     const uint64_t range_first = options.pass_first >= 0 ? static_cast<uint64_t>(options.pass_first) : 0;
     const uint64_t range_end = options.pass_end > 0 ? static_cast<uint64_t>(options.pass_end) : target;
 
@@ -298,7 +281,7 @@ int render(const Options &options, SignalWatcher &signals) {
                      "emitter): the image will be black\n",
                      options.scene.c_str());
 
-    signals.start([renderer] { ppm_renderer_cancel(renderer); });
+    signals.start([r = renderer.get()] { ppm_renderer_cancel(r); });
     const Clock::time_point start = Clock::now();
     Deadline deadline(renderer, budget);
     ProgressBar progress(!options.quiet);
@@ -328,12 +311,10 @@ int render(const Options &options, SignalWatcher &signals) {
             // why the pass failed (out of memory, typically, when the image cannot be read).
             try {
                 write_images(renderer, options);
-            } catch (const ApiError &e) {
-                message += "; then " + e.message;
             } catch (const std::exception &e) {
                 message += "; then " + std::string(e.what());
             }
-            throw ApiError{message};
+            throw std::runtime_error(message);
         }
         last_pass_seconds = seconds_since(pass_start);
         ++passes;
@@ -406,9 +387,6 @@ int main(int argc, char **argv) {
     SignalWatcher signals; // before libppm creates threads: they inherit the blocked signals
     try {
         return render(options, signals);
-    } catch (const ApiError &e) {
-        std::fprintf(stderr, "ppm-render: %s\n", e.message.c_str());
-        return 2;
     } catch (const std::exception &e) {
         std::fprintf(stderr, "ppm-render: %s\n", e.what());
         return 2;

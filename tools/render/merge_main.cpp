@@ -5,6 +5,8 @@
 #include <ppm/ppm.h>
 
 #include "common/command_line.h"
+#include "common/handle.h"
+#include "common/status.h"
 #include "image_writer.h"
 
 #include <unistd.h>
@@ -14,6 +16,7 @@
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace ppm_render;
@@ -65,13 +68,7 @@ void check_options(const Options &o) {
         throw ppm_tools::UsageError("no output given (-o IMAGE or --save-partial)");
 }
 
-struct RuntimeError {
-    std::string message;
-};
-
-void check(ppm_status status, const std::string &what = "") {
-    if (status != PPM_OK) throw RuntimeError{(what.empty() ? "" : what + ": ") + ppm_last_error_message()};
-}
+using ppm_tools::check;
 
 int64_t get_int(ppm_partial p, const char *key) {
     int64_t value = 0;
@@ -105,22 +102,15 @@ std::vector<uint64_t> missing_passes(const std::vector<uint64_t> &held, uint64_t
 int merge(const Options &options) {
     for (const std::string &path : options.outputs) check_image_format(path);
     const bool progress = !options.quiet && isatty(STDERR_FILENO);
-    ppm_partial merged = nullptr;
-    struct Release {
-        ppm_partial &p;
-        ~Release() { ppm_partial_release(p); }
-    } release{merged};
+    ppm_tools::Partial merged;
     for (std::size_t i = 0; i < options.partials.size(); ++i) {
         const std::string &path = options.partials[i];
-        ppm_partial part = nullptr;
-        check(ppm_partial_load(path.c_str(), &part));
-        if (!merged) {
-            merged = part;
-        } else {
-            const ppm_status status = ppm_partial_merge(merged, part);
-            ppm_partial_release(part);
-            check(status);
-        }
+        ppm_tools::Partial part;
+        check(ppm_partial_load(path.c_str(), part.out()));
+        if (!merged)
+            merged = std::move(part);
+        else
+            check(ppm_partial_merge(merged, part));
         if (progress)
             std::fprintf(stderr, "\rppm-merge: %zu of %zu partials, %lld passes", i + 1, options.partials.size(),
                          static_cast<long long>(get_int(merged, "passes")));
@@ -180,8 +170,6 @@ int main(int argc, char **argv) {
     }
     try {
         return merge(options);
-    } catch (const RuntimeError &e) {
-        std::fprintf(stderr, "ppm-merge: %s\n", e.message.c_str());
     } catch (const std::exception &e) {
         std::fprintf(stderr, "ppm-merge: %s\n", e.what());
     }

@@ -4,6 +4,8 @@
 #include <ppm/ppm.h>
 
 #include "common/command_line.h"
+#include "common/handle.h"
+#include "common/status.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -84,42 +86,30 @@ bool is_scene_file(const std::string &path) {
     return ends_with(path, ".json") || ends_with(path, ".JSON") || ends_with(path, ".xml") || ends_with(path, ".XML");
 }
 
-void check(ppm_status status, const std::string &what) {
-    if (status != PPM_OK)
-        throw std::runtime_error(what + ": " + ppm_status_string(status) + ": " + ppm_last_error_message());
-}
+// ppm-tess's messages name the status: "reading the scene: parse error: FILE:LINE: ...".
+using ppm_tools::check_with_status;
 
 // The patches of a .bpt file, or the world-space patches of every Bezier shape of a scene file
 // (.json or .xml), read by libppm (whose errors name the file, line and key).
 std::vector<double> read_patches(const std::string &path) {
-    ppm_context context = nullptr;
-    ppm_scene scene = nullptr;
-    ppm_scene_file file = nullptr;
-    struct Release {
-        ppm_context &c;
-        ppm_scene &s;
-        ppm_scene_file &f;
-        ~Release() {
-            ppm_scene_file_release(f);
-            ppm_scene_release(s);
-            ppm_context_release(c);
-        }
-    } release{context, scene, file};
-    check(ppm_context_create(&context), "creating a context");
+    ppm_tools::Context context;
+    ppm_tools::SceneFile file;
+    ppm_tools::Scene scene;
+    check_with_status(ppm_context_create(context.out()), "creating a context");
     if (is_scene_file(path)) {
-        check(ppm_scene_file_load(context, path.c_str(), &file), "reading the scene");
-        check(ppm_scene_file_get_scene(file, &scene), path);
+        check_with_status(ppm_scene_file_load(context, path.c_str(), file.out()), "reading the scene");
+        check_with_status(ppm_scene_file_get_scene(file, scene.out()), path);
     } else {
-        check(ppm_scene_create(context, &scene), "creating a scene");
-        check(ppm_scene_load_bpt(scene, path.c_str(), nullptr), "reading the patches");
-        check(ppm_scene_commit(scene), path);
+        check_with_status(ppm_scene_create(context, scene.out()), "creating a scene");
+        check_with_status(ppm_scene_load_bpt(scene, path.c_str(), nullptr), "reading the patches");
+        check_with_status(ppm_scene_commit(scene), path);
     }
     size_t geometries = 0;
-    check(ppm_scene_get_geometry_count(scene, &geometries), path);
+    check_with_status(ppm_scene_get_geometry_count(scene, &geometries), path);
     std::vector<double> points;
     for (uint32_t g = 0; g < geometries; ++g) {
         size_t count = 0;
-        check(ppm_scene_get_primitive_count(scene, g, &count), path);
+        check_with_status(ppm_scene_get_primitive_count(scene, g, &count), path);
         std::vector<double> patch_points(count * 48);
         // Other shapes (spheres, quads, meshes) are not patch sets: skipped.
         if (ppm_scene_get_bezier_patches(scene, g, patch_points.data(), patch_points.size()) == PPM_OK)
@@ -238,37 +228,30 @@ int run(const Options &o) {
     const double diag = diagonal(points);
     const double tolerance = o.relative ? o.tolerance * diag : o.tolerance;
 
-    ppm_mesh mesh = nullptr;
-    check(ppm_tessellate_patches(points.data(), patch_count, tolerance, o.grid, &mesh), o.input);
+    ppm_tools::Mesh mesh;
+    check_with_status(ppm_tessellate_patches(points.data(), patch_count, tolerance, o.grid, mesh.out()), o.input);
     MeshView m;
     double deviation = 0;
-    try {
-        check(ppm_mesh_get_vertices(mesh, &m.positions, &m.normals, &m.uvs, &m.vertex_count), o.input);
-        check(ppm_mesh_get_triangles(mesh, &m.indices, &m.triangle_count), o.input);
-        check(ppm_mesh_get_welded_vertices(mesh, &m.welded, &m.welded_count), o.input);
-        check(ppm_mesh_get_double(mesh, "max_deviation", &deviation), o.input);
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (o.grid)
-            std::fprintf(stderr, "ppm-tess: %s: %zu patches, uniform grid %u: ", o.input.c_str(), patch_count, o.grid);
+    check_with_status(ppm_mesh_get_vertices(mesh, &m.positions, &m.normals, &m.uvs, &m.vertex_count), o.input);
+    check_with_status(ppm_mesh_get_triangles(mesh, &m.indices, &m.triangle_count), o.input);
+    check_with_status(ppm_mesh_get_welded_vertices(mesh, &m.welded, &m.welded_count), o.input);
+    check_with_status(ppm_mesh_get_double(mesh, "max_deviation", &deviation), o.input);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (o.grid)
+        std::fprintf(stderr, "ppm-tess: %s: %zu patches, uniform grid %u: ", o.input.c_str(), patch_count, o.grid);
+    else
+        std::fprintf(stderr, "ppm-tess: %s: %zu patches, tolerance %.6g (%.6g of the diagonal %.6g): ", o.input.c_str(),
+                     patch_count, tolerance, tolerance / diag, diag);
+    std::fprintf(stderr,
+                 "%zu triangles, %zu vertices (%zu distinct positions); measured max deviation %.6g "
+                 "(%.6g of the diagonal); %.2f s\n",
+                 m.triangle_count, m.vertex_count, m.welded_count, deviation, deviation / diag, seconds);
+    write_atomically(o.output, [&](std::FILE *out) {
+        if (o.ply)
+            write_ply(out, m, o.input);
         else
-            std::fprintf(stderr,
-                         "ppm-tess: %s: %zu patches, tolerance %.6g (%.6g of the diagonal %.6g): ", o.input.c_str(),
-                         patch_count, tolerance, tolerance / diag, diag);
-        std::fprintf(stderr,
-                     "%zu triangles, %zu vertices (%zu distinct positions); measured max deviation %.6g "
-                     "(%.6g of the diagonal); %.2f s\n",
-                     m.triangle_count, m.vertex_count, m.welded_count, deviation, deviation / diag, seconds);
-        write_atomically(o.output, [&](std::FILE *out) {
-            if (o.ply)
-                write_ply(out, m, o.input);
-            else
-                write_obj(out, m, o.input);
-        });
-    } catch (...) {
-        ppm_mesh_release(mesh);
-        throw;
-    }
-    ppm_mesh_release(mesh);
+            write_obj(out, m, o.input);
+    });
     std::fprintf(stderr, "ppm-tess: wrote %s\n", o.output.c_str());
     return 0;
 }

@@ -8,8 +8,8 @@ in both transport modes. Prints per-case, per-channel ratios libppm / Mitsuba:
   max |rel| = the largest relative difference of f (and pdf) at one pair
   albedo    = per-wo ratios of the sampled albedos.
 
-libppm's side is the internal program tests/bsdf_values (build it: cmake --build build
---target bsdf_values). Mitsuba: /tmp/mitsuba-venv/bin/python (variant scalar_rgb).
+libppm's side is the internal program tools/validate/bsdf_values (built with the tools:
+cmake --build build --target bsdf_values). Mitsuba: /tmp/mitsuba-venv/bin/python (variant scalar_rgb).
   compare_dielectric_bsdfs.py [--bsdf-values PATH] [--samples 40000] [--only NAME ...]
 Not run by CI (Mitsuba is a big download); the figures are quoted in the report.
 
@@ -70,7 +70,7 @@ def direction(theta, phi):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--bsdf-values", default=os.path.join(REPO, "build", "tests", "bsdf_values"))
+    parser.add_argument("--bsdf-values", default=os.path.join(REPO, "build", "tools", "validate", "bsdf_values"))
     parser.add_argument("--samples", type=int, default=40000, help="samples per albedo estimate (each side)")
     parser.add_argument("--only", nargs="*")
     args = parser.parse_args()
@@ -84,7 +84,7 @@ def main():
         ours.stdin.flush()
         return [float(x) for x in ours.stdout.readline().split()]
 
-    print(f"Mitsuba {mi.__version__} (scalar_rgb) against libppm tests/bsdf_values")
+    print(f"Mitsuba {mi.__version__} (scalar_rgb) against libppm tools/validate/bsdf_values")
     modes = {"radiance": mi.TransportMode.Radiance, "importance": mi.TransportMode.Importance}
     worst = 0.0
     for name in args.only or list(CASES):

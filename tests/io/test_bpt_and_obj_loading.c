@@ -31,7 +31,7 @@ static int setup(void **state) {
     fixture *f = calloc(1, sizeof *f);
     if (!f) return -1;
     const char *tmp = getenv("TMPDIR");
-    snprintf(f->dir, sizeof f->dir, "%s/ppm_test_files_XXXXXX", tmp && tmp[0] ? tmp : "/tmp");
+    snprintf(f->dir, sizeof f->dir, "%s/ppm_bpt_obj_XXXXXX", tmp && tmp[0] ? tmp : "/tmp");
     if (!mkdtemp(f->dir) || ppm_context_create(&f->context) != PPM_OK ||
         ppm_scene_create(f->context, &f->scene) != PPM_OK) {
         ppm_context_release(f->context);

@@ -126,7 +126,7 @@ double expected_mean(int x0, int x1) {
 
 // tolerance: relative. The photon estimates of one pass are shared by all pixels, so their
 // errors do not average out over the region: ~ 1-2 % at 32 passes (the furnace tests of
-// test_render allow 3 %). PPM's fixed points continue through a narrow lobe in ONE sampled
+// test_render_analytic allow 3 %). PPM's fixed points continue through a narrow lobe in ONE sampled
 // direction per pixel for the whole render, weight F G1(wi) (zero below the horizon, 12 % of
 // the time here), so its mean over 64 pixels keeps a standard deviation of ~ 4 %.
 void check(void **state, const char *mode, double gather_alpha, double tolerance = 0.04) {
