@@ -335,6 +335,9 @@ class Translator:
                        "diffuse_reflectance", "nonlinear", "eta", "k", "distribution", "alpha", "alpha_u",
                        "alpha_v", "sample_visible"}, where)
         kind = b.get("type")
+        if kind == "null":
+            check_keys(b, {"type"}, where)
+            return {"type": "null"}
         if kind == "diffuse":
             check_keys(b, {"type", "reflectance"}, where)
             inner = {"type": "diffuse", "reflectance": self.texture_or_colour(b.get("reflectance", 0.5),
