@@ -2,11 +2,14 @@
 # SPDX-License-Identifier: Apache-2.0
 # README command 2: builds and tests everything. Assumes scripts/setup.sh has run.
 #
-#   bash scripts/test.sh
+#   bash scripts/test.sh [--full] [--no-tsan]
 #
 # 1. Release build in build/, every ctest test.
-# 2. ASan + UBSan build (-DPPM_SANITIZE=ON) in build-asan/, ctest with PPM_TEST_QUICK=1 and
-#    sanitizer errors and leaks fatal.
+# 2. ASan + UBSan build (-DPPM_SANITIZE=ON, -O1 -g1) in build-asan/, ctest with
+#    PPM_TEST_QUICK=1 and sanitizer errors and leaks fatal. Without ppm-bench and the reference
+#    intersector (their tests ran in step 1), and without the tests labelled "slow" (the long
+#    statistical and convergence runs, which also ran in step 1). --full (CI) builds and runs
+#    them all under the sanitizers too.
 # 3. Installs the Release build into a temporary prefix and checks the package: files, SONAME,
 #    exported symbols, and the examples/ consumer built against the installed library with
 #    find_package(ppm) and with pkg-config.
@@ -21,11 +24,13 @@ source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 cd "$PPM_ROOT"
 
 run_tsan=1
+full=0
 for arg in "$@"; do
   case "$arg" in
   --tsan) run_tsan=1 ;;
   --no-tsan) run_tsan=0 ;;
-  *) ppm_die "unknown option '$arg' (usage: bash scripts/test.sh [--no-tsan])" ;;
+  --full) full=1 ;;
+  *) ppm_die "unknown option '$arg' (usage: bash scripts/test.sh [--full] [--no-tsan])" ;;
   esac
 done
 
@@ -44,22 +49,43 @@ fail() {
   echo "FAIL: $*"
 }
 
+# step NAME: a banner, and the time of the previous step into the summary.
+step_names=()
+step_seconds=()
+step_started=$SECONDS
+step() {
+  if ((${#step_names[@]} > 0)); then step_seconds+=($((SECONDS - step_started))); fi
+  step_names+=("$1")
+  step_started=$SECONDS
+  ppm_step "$1"
+}
+
 finish() {
+  step_seconds+=($((SECONDS - step_started)))
   ppm_step "Summary (${SECONDS}s)"
-  local failure
+  local i failure
+  for i in "${!step_names[@]}"; do printf '  %5d s  %s\n' "${step_seconds[$i]}" "${step_names[$i]}"; done
   for failure in "${failures[@]}"; do echo "  failed: $failure"; done
   echo "summary: $passed passed, $failed failed"
   ((failed == 0))
   exit
 }
 
-# run_ctest LABEL BUILD_DIR [VAR=value...]: runs every test of BUILD_DIR, adds its counts.
+# run_ctest LABEL BUILD_DIR [ctest options...] [-- VAR=value...]: runs the tests of BUILD_DIR
+# (all of them unless the options select), adds their counts.
 run_ctest() {
   local label=$1 dir=$2
   shift 2
+  local options=() environment=()
+  while (($# > 0)) && [[ "$1" != -- ]]; do
+    options+=("$1")
+    shift
+  done
+  (($# > 0)) && shift
+  environment=("$@")
   local log="$dir/ctest-summary.log"
-  env "$@" ctest --test-dir "$dir" --output-on-failure --parallel 2 --no-tests=error \
-    --timeout 1200 2>&1 | tee "$log"
+  env "${environment[@]}" ctest --test-dir "$dir" --output-on-failure --parallel "$PPM_JOBS" --no-tests=error \
+    --timeout 1200 "${options[@]}" 2>&1 | tee "$log"
   local status=${PIPESTATUS[0]}
   # "100% tests passed, 0 tests failed out of 6"
   local line
@@ -82,7 +108,7 @@ run_ctest() {
 }
 
 # ---------------------------------------------------------------------------------------------
-ppm_step "Dependencies"
+step "Dependencies"
 mapfile -t missing < <(ppm_missing_packages)
 if ((${#missing[@]} > 0)); then
   ppm_die "missing Debian packages: ${missing[*]}
@@ -95,24 +121,35 @@ done
 echo "all ${#PPM_DEBIAN_PACKAGES[@]} Debian packages and the build tools are there"
 
 # ---------------------------------------------------------------------------------------------
-ppm_step "Release build in $PPM_BUILD_DIR/"
+step "Release build in $PPM_BUILD_DIR/"
 if ! ppm_build_release; then
   fail "Release build"
   finish
 fi
 
-ppm_step "Release tests"
+step "Release tests"
 run_ctest "Release" "$PPM_BUILD_DIR"
 
 # ---------------------------------------------------------------------------------------------
-ppm_step "ASan + UBSan build in $PPM_ASAN_BUILD_DIR/"
-# RelWithDebInfo: optimised like the real thing, with line numbers in sanitizer reports.
-if ppm_configure "$PPM_ROOT" "$PPM_ASAN_BUILD_DIR" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DPPM_SANITIZE=ON && cmake --build "$PPM_ASAN_BUILD_DIR" --parallel "$PPM_JOBS"; then
-  ppm_step "ASan + UBSan tests (PPM_TEST_QUICK=1)"
+step "ASan + UBSan build in $PPM_ASAN_BUILD_DIR/"
+# ppm-bench (CGAL, CLI11: a third of this build's compile time) and the reference intersector
+# only with --full: their tests ran in the Release build.
+asan_options=("${PPM_SANITIZER_CMAKE_ARGS[@]}" -DPPM_SANITIZE=ON -DPPM_BUILD_BENCH=OFF -DPPM_BUILD_REFERENCE=OFF)
+asan_ctest=(-LE slow)
+if ((full)); then
+  asan_options=("${PPM_SANITIZER_CMAKE_ARGS[@]}" -DPPM_SANITIZE=ON -DPPM_BUILD_BENCH=ON -DPPM_BUILD_REFERENCE=ON)
+  asan_ctest=()
+fi
+if ppm_configure "$PPM_ROOT" "$PPM_ASAN_BUILD_DIR" "${asan_options[@]}" &&
+  cmake --build "$PPM_ASAN_BUILD_DIR" --parallel "$PPM_JOBS"; then
+  if ((full)); then
+    step "ASan + UBSan tests, all of them (PPM_TEST_QUICK=1)"
+  else
+    step "ASan + UBSan tests but those labelled slow (PPM_TEST_QUICK=1)"
+  fi
   # Any report ends the test with a non-zero status; leaks are reported at exit, except the
   # third-party ones listed with their reasons in tests/lsan.supp.
-  run_ctest "ASan+UBSan" "$PPM_ASAN_BUILD_DIR" PPM_TEST_QUICK=1 \
+  run_ctest "ASan+UBSan" "$PPM_ASAN_BUILD_DIR" "${asan_ctest[@]}" -- PPM_TEST_QUICK=1 \
     ASAN_OPTIONS=detect_leaks=1:halt_on_error=1:abort_on_error=0:detect_stack_use_after_return=1:strict_string_checks=1:check_initialization_order=1:strict_init_order=1 \
     UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1:report_error_type=1 \
     LSAN_OPTIONS=suppressions=$PPM_ROOT/tests/lsan.supp:print_suppressions=0
@@ -121,7 +158,7 @@ else
 fi
 
 # ---------------------------------------------------------------------------------------------
-ppm_step "Install into a temporary prefix and use the installed package"
+step "Install into a temporary prefix and use the installed package"
 work=$(mktemp -d "${TMPDIR:-/tmp}/ppm-test.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 prefix="$work/prefix"
@@ -269,10 +306,9 @@ else
 fi
 
 # ---------------------------------------------------------------------------------------------
-ppm_step "Python: pip wheel . (libppm with its extension), installed into a fresh venv, pytest"
+step "Python: pip wheel . (libppm with its extension), installed into a fresh venv, pytest"
 # Debian's interpreter, not whichever python3 comes first in PATH (e.g. pyenv's): the venv sees
 # Debian's numpy, pytest and matplotlib through --system-site-packages.
-python_started=$SECONDS
 python=${PPM_PYTHON:-/usr/bin/python3}
 venv="$work/venv"
 # The wheel is built as a user's `pip wheel .` builds it (build requirements from PyPI in an
@@ -313,18 +349,15 @@ else
   tail -n 40 "$work/pip.log" 2>/dev/null
   fail "python: venv, pip wheel . or installing the wheel"
 fi
-echo "python step: $((SECONDS - python_started)) s"
 
 # ---------------------------------------------------------------------------------------------
 if ((run_tsan)); then
-  ppm_step "ThreadSanitizer (scripts/tsan.sh)"
-  tsan_started=$SECONDS
+  step "ThreadSanitizer (scripts/tsan.sh)"
   if bash scripts/tsan.sh; then
     pass "ThreadSanitizer: the threads tests ran without a report"
   else
     fail "ThreadSanitizer: scripts/tsan.sh (a build step, a test, or a TSan report)"
   fi
-  echo "ThreadSanitizer step: $((SECONDS - tsan_started)) s"
 fi
 
 finish

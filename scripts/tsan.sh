@@ -71,8 +71,8 @@ ppm_step "ThreadSanitizer: libtbb with -fsanitize=thread in $tbb/"
 build_tbb
 
 ppm_step "ThreadSanitizer: libppm and the thread tests in $build_dir/"
-ppm_configure "$PPM_ROOT" "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPPM_SANITIZE=thread \
-  -DPPM_BUILD_TOOLS=OFF -DPPM_TSAN_TBB_LIBRARY_DIR="$tbb/lib"
+ppm_configure "$PPM_ROOT" "$build_dir" "${PPM_SANITIZER_CMAKE_ARGS[@]}" -DPPM_SANITIZE=thread \
+  -DPPM_BUILD_TOOLS=OFF -DPPM_BUILD_REFERENCE=OFF -DPPM_TSAN_TBB_LIBRARY_DIR="$tbb/lib"
 # Only the executables of the label: each test of ppm_add_test is named after its target.
 mapfile -t tests < <(ctest --test-dir "$build_dir" -N -L threads | sed -n 's/^ *Test *#[0-9]*: *//p')
 ((${#tests[@]} > 0)) || ppm_die "no test is labelled 'threads'"

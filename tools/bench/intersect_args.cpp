@@ -10,10 +10,10 @@ namespace bench {
 
 namespace {
 
-const char *const description = "Speed against accuracy of patch intersection: libppm, naive\n"
-                                "Newton, Embree and CGAL on tessellations, against a long-double\n"
-                                "reference";
-const char *const footer =
+const char *const intersect_description = "Speed against accuracy of patch intersection: libppm, naive\n"
+                                          "Newton, Embree and CGAL on tessellations, against a long-double\n"
+                                          "reference";
+const char *const intersect_footer =
     "Speed against accuracy of ray / Bezier patch intersection: libppm's exact intersector at\n"
     "several tolerances, naive Newton methods, and tessellations traced by Embree and CGAL, all\n"
     "judged ray by ray against an independent long-double reference intersector, on one thread\n"
@@ -43,8 +43,8 @@ bool IntersectOptions::has_set(const std::string &name) const {
 }
 
 CLI::App *add_intersect_command(CLI::App &app, IntersectOptions &o) {
-    CLI::App *command = app.add_subcommand("intersect", description);
-    command->footer(footer);
+    CLI::App *command = app.add_subcommand("intersect", intersect_description);
+    command->footer(intersect_footer);
     command->add_option("--bpt", o.bpt_path, "patches to load (default " + data_file("teapot.bpt") + ")")
         ->type_name("FILE");
     command

@@ -27,8 +27,6 @@ namespace bench {
 
 namespace {
 
-constexpr double default_tolerance = 1e-9; // libppm's default scene tolerance
-
 // The size of a set that scales with --rays: none for --rays 0, else at least one ray.
 size_t fraction(size_t rays, size_t divisor) { return rays == 0 ? 0 : std::max<size_t>(1, rays / divisor); }
 

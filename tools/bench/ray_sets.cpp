@@ -15,7 +15,6 @@ namespace bench {
 namespace {
 
 constexpr double pi = 3.14159265358979323846;
-constexpr double default_tolerance = 1e-9; // libppm's default scene tolerance
 using ref::cross;
 using ref::normalize;
 using ref::real;

@@ -14,6 +14,9 @@
 
 namespace bench {
 
+// libppm's default scene tolerance (the scene setting "tolerance").
+constexpr double default_tolerance = 1e-9;
+
 struct Bounds {
     double lower[3], upper[3];
     double diagonal() const;

@@ -22,11 +22,11 @@ using ppm_tools::check_with_status;
 
 namespace {
 
-const char *const description = "Renderer speed: eye pass time, photon paths/s, memory";
-const char *const footer = "Times the renderer's passes: eye pass seconds, photon paths per second and peak\n"
-                           "memory, per scene, hit-point search and photons per pass; build_s is the part of\n"
-                           "eye_s spent building the hit-point search. Figures are medians over the passes.\n"
-                           "Exit status: 0 ok, 1 usage error, 2 runtime error.";
+const char *const render_description = "Renderer speed: eye pass time, photon paths/s, memory";
+const char *const render_footer = "Times the renderer's passes: eye pass seconds, photon paths per second and peak\n"
+                                  "memory, per scene, hit-point search and photons per pass; build_s is the part of\n"
+                                  "eye_s spent building the hit-point search. Figures are medians over the passes.\n"
+                                  "Exit status: 0 ok, 1 usage error, 2 runtime error.";
 
 double peak_rss_mib() {
     rusage usage{};
@@ -52,8 +52,8 @@ void write_pfm(const std::string &path, ppm_renderer renderer, int w, int h) {
 } // namespace
 
 CLI::App *add_render_command(CLI::App &app, RenderOptions &o) {
-    CLI::App *command = app.add_subcommand("render", description);
-    command->footer(footer);
+    CLI::App *command = app.add_subcommand("render", render_description);
+    command->footer(render_footer);
     auto list = [&](const std::string &name, std::vector<std::string> &out, const std::vector<std::string> &known,
                     const std::string &help) {
         command->add_option(name, out, help)

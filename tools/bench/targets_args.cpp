@@ -10,23 +10,24 @@ namespace bench {
 
 namespace {
 
-const char *const description = "The exact intersector's speed and memory targets against Embree\n"
-                                "and CGAL on a uniform mesh, from medians of interleaved timing\n"
-                                "rounds";
-const char *const footer = "Checks the speed and memory targets of libppm's exact intersector against the same model\n"
-                           "tessellated as a uniform mesh and traced by Embree and by CGAL's AABB tree: at least 0.5\n"
-                           "times Embree's speed and 5 times CGAL's on random rays, at least 1000 times less memory\n"
-                           "than either. Every method is built once on one thread; then, in each round, each method\n"
-                           "(in an order rotated from round to round) traces each ray set on one thread, and a speed\n"
-                           "ratio is taken within the round. Verdicts use the median of those per-round ratios, so a\n"
-                           "load burst on a shared machine moves one round, not the verdict.\n"
-                           "Exit status: 0 ok (whatever the verdicts), 1 usage error, 2 runtime error.";
+const char *const targets_description = "The exact intersector's speed and memory targets against Embree\n"
+                                        "and CGAL on a uniform mesh, from medians of interleaved timing\n"
+                                        "rounds";
+const char *const targets_footer =
+    "Checks the speed and memory targets of libppm's exact intersector against the same model\n"
+    "tessellated as a uniform mesh and traced by Embree and by CGAL's AABB tree: at least 0.5\n"
+    "times Embree's speed and 5 times CGAL's on random rays, at least 1000 times less memory\n"
+    "than either. Every method is built once on one thread; then, in each round, each method\n"
+    "(in an order rotated from round to round) traces each ray set on one thread, and a speed\n"
+    "ratio is taken within the round. Verdicts use the median of those per-round ratios, so a\n"
+    "load burst on a shared machine moves one round, not the verdict.\n"
+    "Exit status: 0 ok (whatever the verdicts), 1 usage error, 2 runtime error.";
 
 } // namespace
 
 CLI::App *add_targets_command(CLI::App &app, TargetsOptions &o) {
-    CLI::App *command = app.add_subcommand("targets", description);
-    command->footer(footer);
+    CLI::App *command = app.add_subcommand("targets", targets_description);
+    command->footer(targets_footer);
     command->add_option("--bpt", o.bpt_path, "patches to load (default " + data_file("teapot.bpt") + ")")
         ->type_name("FILE");
     add_number_list(*command, "--presplit", o.presplits, 1, 32, false,

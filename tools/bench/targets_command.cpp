@@ -21,8 +21,6 @@ namespace bench {
 
 namespace {
 
-constexpr double default_tolerance = 1e-9; // libppm's default scene tolerance
-
 BuiltMethod build(std::unique_ptr<Method> method) {
     BuiltMethod built;
     Stopwatch clock;
