@@ -538,8 +538,10 @@ PPM_API ppm_status ppm_scene_add_light(ppm_scene scene, const char *type, const 
  * except a `uv_rects` count that does not match the patches of a .bpt file, which is known
  * only once the file is read (the geometry is then left in the scene). The typed calls above
  * (ppm_scene_add_sphere, _quad, _disk, _cylinder, _triangle_mesh, ppm_scene_load_*) are the
- * same geometries with explicit arguments. Errors: as ppm_scene_add_material, and IO and
- * PARSE for mesh files. */
+ * same geometries with explicit arguments. Ownership: nothing is kept of `params` or its
+ * strings after the call. Thread rules: as for the other calls that build a scene (not
+ * during any other call on it). Errors: as ppm_scene_add_material (a material id that names
+ * no material too), and IO and PARSE for files. */
 PPM_API ppm_status ppm_scene_add_shape(ppm_scene scene, const char *type, const ppm_param *params, size_t param_count,
                                        uint32_t *out_geom_id);
 

@@ -6,28 +6,39 @@
 #include "api/api_type_tables.h"
 #include "settings/render_modes.h"
 
+#include <cstring>
 #include <string>
 #include <vector>
 
 namespace {
 
-const char *const kKinds[] = {"material", "texture", "light", "shape", "mode"};
+std::vector<const char *> mode_names() {
+    std::vector<const char *> names;
+    for (const ppm::ModeTraits &m : ppm::render_modes()) names.push_back(m.name);
+    return names;
+}
+
+// Each kind and where its names come from, in the order messages list them.
+struct Kind {
+    const char *name;
+    std::vector<const char *> (*names)();
+};
+const Kind kKinds[] = {
+    {"material", ppm::api::material_type_names},
+    {"texture", ppm::api::texture_type_names},
+    {"light", ppm::api::light_type_names},
+    {"shape", ppm::api::shape_type_names},
+    {"mode", mode_names},
+};
 
 std::vector<const char *> names_of(const char *kind) {
     if (!kind) ppm::invalid_argument("kind is NULL");
-    const std::string k = kind;
-    if (k == "material") return ppm::api::material_type_names();
-    if (k == "texture") return ppm::api::texture_type_names();
-    if (k == "light") return ppm::api::light_type_names();
-    if (k == "shape") return ppm::api::shape_type_names();
-    if (k == "mode") {
-        std::vector<const char *> names;
-        for (const ppm::ModeTraits &m : ppm::render_modes()) names.push_back(m.name);
-        return names;
-    }
     std::string list;
-    for (const char *known : kKinds) list += (list.empty() ? "" : ", ") + std::string(known);
-    ppm::invalid_argument("unknown kind '" + k + "' (kinds: " + list + ")");
+    for (const Kind &k : kKinds) {
+        if (std::strcmp(k.name, kind) == 0) return k.names();
+        list += (list.empty() ? "" : ", ") + std::string(k.name);
+    }
+    ppm::invalid_argument("unknown kind '" + std::string(kind) + "' (kinds: " + list + ")");
 }
 
 } // namespace

@@ -128,15 +128,11 @@ void RenderSettings::set_string(const std::string &key, const std::string &value
         const ModeTraits *found = find_mode(value);
         if (!found) {
             std::vector<std::string> names;
-            std::string list;
-            for (const ModeTraits &m : render_modes()) {
-                names.emplace_back(m.name);
-                list += (list.empty()                            ? "\""
-                         : names.size() == render_modes().size() ? "\" or \""
-                                                                 : "\", \"") +
-                        names.back();
-            }
-            invalid_argument("mode must be " + list + "\", not \"" + value + "\"" + did_you_mean(value, names));
+            for (const ModeTraits &m : render_modes()) names.emplace_back(m.name);
+            std::string list; // "sppm", "ppm", ... or "vm"
+            for (std::size_t i = 0; i < names.size(); ++i)
+                list += std::string(i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + "\"" + names[i] + "\"";
+            invalid_argument("mode must be " + list + ", not \"" + value + "\"" + did_you_mean(value, names));
         }
         mode = found->mode;
     } else if (key == "hit_point_search") {
