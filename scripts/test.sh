@@ -13,9 +13,10 @@
 # 3. Installs the Release build into a temporary prefix and checks the package: files, SONAME,
 #    exported symbols, and the examples/ consumer built against the installed library with
 #    find_package(ppm) and with pkg-config.
-# 4. Python: builds the wheel of the package libppm with `pip wheel .`, installs it into a
-#    temporary venv with Dask, Ray and mypy, checks that libppm.so.0 sits beside the extension,
-#    and runs the pytest tests (each test counts in the summary; a failed build counts as one).
+# 4. Python: builds the package libppm (the extension against the library installed in step 3;
+#    with --full the wheel, with `pip wheel .`), installs it into a temporary venv with Dask,
+#    Ray and mypy, checks that libppm.so.0 sits beside the extension, and runs the pytest
+#    tests (each test counts in the summary; a failed build counts as one).
 # 5. scripts/tsan.sh: the ThreadSanitizer build in build-tsan/ and the tests labelled
 #    "threads" under it, every report fatal (counts as one check); --no-tsan skips it.
 # Exits non-zero if anything failed; the last line sums up ctest tests and package checks.
@@ -306,30 +307,59 @@ else
 fi
 
 # ---------------------------------------------------------------------------------------------
-step "Python: pip wheel . (libppm with its extension), installed into a fresh venv, pytest"
+# The package is installed into a fresh venv in one of two ways, then checked and tested:
+# - default: the extension alone (cmake -S bindings/python) against the library installed in
+#   the step above, with the package's own install rules, so the library is not compiled again;
+# - --full (CI): the wheel, as a user's `pip wheel .` builds it (build requirements from PyPI
+#   in an isolated environment, the C library compiled with it, no -march=native).
+# Either way the render-farm engines (the [dask] and [ray] extras) and mypy come from PyPI; a
+# test whose engine or checker cannot be installed is skipped and says why.
+if ((full)); then
+  step "Python: pip wheel . (libppm with its extension), installed into a fresh venv, pytest"
+else
+  step "Python: the extension against the installed libppm, in a fresh venv, pytest"
+fi
 # Debian's interpreter, not whichever python3 comes first in PATH (e.g. pyenv's): the venv sees
 # Debian's numpy, pytest and matplotlib through --system-site-packages.
 python=${PPM_PYTHON:-/usr/bin/python3}
 venv="$work/venv"
-# The wheel is built as a user's `pip wheel .` builds it (build requirements from PyPI in an
-# isolated environment, the C library compiled with it), then installed with the render-farm
-# engines (the [dask] and [ray] extras) and mypy; a test whose engine or checker cannot be
-# installed is skipped and says why.
-if "$python" -m venv --system-site-packages "$venv" &&
-  CMAKE_BUILD_PARALLEL_LEVEL="$PPM_JOBS" "$venv/bin/pip" wheel --no-deps -w "$work/wheel" . \
-    >"$work/pip.log" 2>&1 &&
-  "$venv/bin/pip" install -q "$work"/wheel/libppm-*.whl >>"$work/pip.log" 2>&1 &&
+
+# install_wheel: builds the wheel with pip and installs it into the venv.
+install_wheel() {
+  CMAKE_BUILD_PARALLEL_LEVEL="$PPM_JOBS" "$venv/bin/pip" wheel --no-deps -w "$work/wheel" . &&
+    "$venv/bin/pip" install "$work"/wheel/libppm-*.whl || return 1
+  local wheel
+  wheel=$(ls "$work"/wheel/libppm-*.whl)
+  echo "wheel: $(basename "$wheel"), $(($(stat -c %s "$wheel") / 1024)) KiB" >&2
+}
+
+# install_against_prefix: builds the extension against the library in $prefix and installs the
+# package (its Python files, and the extension, stubs and libppm.so.0 by the "python" install
+# component that the wheel uses too) into the venv's site-packages.
+install_against_prefix() {
+  local build="$work/python-build" site nanobind
+  "$venv/bin/pip" install "nanobind>=2.0" || return 1
+  nanobind=$("$venv/bin/python" -m nanobind --cmake_dir) &&
+    site=$("$venv/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])') &&
+    cmake -S bindings/python -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+      -DCMAKE_PREFIX_PATH="$prefix;$nanobind" -DPython_EXECUTABLE="$venv/bin/python" &&
+    cmake --build "$build" --parallel "$PPM_JOBS" &&
+    cmake --install "$build" --component python --prefix "$site" &&
+    cp -r bindings/python/libppm/. "$site/libppm/"
+}
+
+if ((full)); then install_package=install_wheel; else install_package=install_against_prefix; fi
+if "$python" -m venv --system-site-packages "$venv" && $install_package >"$work/pip.log" 2>&1 &&
   { "$venv/bin/pip" install -q "dask[distributed]" tqdm ray mypy ||
     echo "warning: the render-farm engines (dask, ray) or mypy could not be installed"; }; then
-  wheel=$(ls "$work"/wheel/libppm-*.whl)
-  echo "wheel: $(basename "$wheel"), $(($(stat -c %s "$wheel") / 1024)) KiB"
+  grep '^wheel: ' "$work/pip.log" || true
   site=$("$venv/bin/python" -c 'import libppm, os; print(os.path.dirname(libppm.__file__))')
   module=$(ls "$site"/_core*.so)
   if [[ -f "$site/libppm.so.0" ]] && readelf -d "$module" | grep -q 'R.*PATH.*\[\$ORIGIN\]' &&
     ! readelf -d "$module" | grep -q "$PPM_ROOT"; then
-    pass "python wheel: libppm.so.0 beside the extension, found through \$ORIGIN"
+    pass "python package: libppm.so.0 beside the extension, found through \$ORIGIN"
   else
-    fail "python wheel: libppm.so.0 missing beside the extension, or an rpath other than \$ORIGIN"
+    fail "python package: libppm.so.0 missing beside the extension, or an rpath other than \$ORIGIN"
   fi
   # From the repository root (the tests read its data), with no loader path.
   env -u LD_LIBRARY_PATH "$venv/bin/python" -m pytest -p no:cacheprovider -q -rs bindings/python/tests 2>&1 |
@@ -347,7 +377,7 @@ if "$python" -m venv --system-site-packages "$venv" &&
   fi
 else
   tail -n 40 "$work/pip.log" 2>/dev/null
-  fail "python: venv, pip wheel . or installing the wheel"
+  fail "python: venv, building the package ($install_package) or installing it"
 fi
 
 # ---------------------------------------------------------------------------------------------

@@ -395,11 +395,14 @@ static void check_triangles(const patches *t, const mesh_view *m) {
 
 static const double relative_tolerance = 1e-3;
 
-/* Every patch of the adaptive teapot within the tolerance, measured here. */
+/* Every patch of the adaptive teapot within the tolerance, measured here. The finest
+ * tolerance (33k triangles, 2M nearest-point searches of this file's own) is left to the
+ * Release run when quick. */
 static void test_adaptive_deviation_on_every_patch(void **state) {
     const patches *t = *state;
     const double tolerances[] = {relative_tolerance * t->diagonal, 1e-2, 1e-3};
-    for (int k = 0; k < 3; ++k) {
+    const int count = test_quick() ? 2 : 3;
+    for (int k = 0; k < count; ++k) {
         const double tolerance = tolerances[k];
         ppm_mesh mesh = tessellate(t, tolerance, 0);
         const mesh_view m = view_of(mesh);
@@ -474,7 +477,9 @@ static uint32_t coarsest_uniform(const patches *t, double tolerance) {
         else
             lo = mid;
     }
-    /* Confirm with this file's measurement. */
+    /* Confirm with this file's measurement (the Release run; quick runs take the library's
+     * figure, which test_uniform_counts checks against this file's). */
+    if (test_quick()) return hi;
     for (;;) {
         ppm_mesh mesh = tessellate(t, 0, hi);
         const mesh_view m = view_of(mesh);
@@ -522,7 +527,7 @@ static void test_uniform_counts(void **state) {
         assert_ppm_ok(ppm_mesh_get_double(mesh, "tolerance", &tolerance));
         assert_true(tolerance == 0);
         assert_ppm_ok(ppm_mesh_get_double(mesh, "max_deviation", &reported));
-        if (n >= 5) {
+        if (n >= 5 && !(test_quick() && n > 5)) {
             const double worst = measure(t, &m, 10, NULL);
             assert_true(fabs(reported - worst) <= 0.02 * worst);
         }

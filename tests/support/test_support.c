@@ -52,6 +52,11 @@ int test_make_folder(char *out, size_t size, const char *prefix) {
     return mkdtemp(out) ? 0 : -1;
 }
 
+int test_quick(void) {
+    const char *quick = getenv("PPM_TEST_QUICK");
+    return quick && *quick && strcmp(quick, "0") != 0;
+}
+
 void test_remove_folder(const char *path) {
     DIR *dir = opendir(path);
     if (dir) {

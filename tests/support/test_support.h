@@ -35,6 +35,11 @@ double test_rng_uniform(test_rng *rng); /* [0, 1) */
 void _assert_close(double a, double b, double tolerance, const char *a_text, const char *b_text, const char *file,
                    int line);
 
+/* True when PPM_TEST_QUICK is set and not "0": the sanitizer builds, whose tests run the same
+ * library calls but may leave out repetitions of the test's own arithmetic that the Release
+ * run does in full. */
+int test_quick(void);
+
 /* A new empty folder $TMPDIR/<prefix>XXXXXX (TMPDIR defaults to /tmp); its path goes into out.
  * Returns 0, or -1 if it cannot be made. */
 int test_make_folder(char *out, size_t size, const char *prefix);
