@@ -17,14 +17,14 @@ namespace ppm {
 
 namespace {
 
-constexpr char kMagic[8] = {'P', 'P', 'M', 'P', 'A', 'R', 'T', '\0'};
-constexpr std::uint32_t kVersion = 1;
-constexpr std::uint32_t kByteOrderMark = 0x01020304;
+constexpr char kPartialMagic[8] = {'P', 'P', 'M', 'P', 'A', 'R', 'T', '\0'};
+constexpr std::uint32_t kPartialVersion = 1;
+constexpr std::uint32_t kPartialByteOrderMark = 0x01020304;
 constexpr std::size_t kPixelRecordBytes = 4 * sizeof(Fixed128) + sizeof(std::uint64_t);
 constexpr std::uint64_t kMaxRanges = std::uint64_t(1) << 32;
 constexpr std::uint64_t kMaxPixels = std::uint64_t(1) << 28; // the renderer's image limit
 
-[[noreturn]] void corrupt(const std::string &origin, const std::string &what) {
+[[noreturn]] void corrupt_partial(const std::string &origin, const std::string &what) {
     fail(PPM_ERROR_PARSE, origin + ": corrupt partial render: " + what);
 }
 
@@ -112,8 +112,8 @@ std::vector<char> Partial::serialize() const {
         fail(PPM_ERROR_OUT_OF_MEMORY,
              "cannot compress the partial render of " + std::to_string(sums_.pixel_count()) + " pixels");
     ByteWriter w;
-    w.put_bytes(kMagic, sizeof kMagic);
-    w.put(kVersion), w.put(kByteOrderMark);
+    w.put_bytes(kPartialMagic, sizeof kPartialMagic);
+    w.put(kPartialVersion), w.put(kPartialByteOrderMark);
     put_identity(w, identity_);
     w.put(pass_total_), w.put(sums_.photons_emitted()), w.put(sums_.rejected());
     const auto &ranges = sums_.passes().ranges();
@@ -144,14 +144,15 @@ Partial *Partial::load(const std::string &path) {
 
 Partial *Partial::parse(const char *data, std::size_t size, const std::string &origin) {
     ByteReader r(origin, "partial render", data, size);
-    char magic[sizeof kMagic];
+    char magic[sizeof kPartialMagic];
     r.get_bytes(magic, sizeof magic, "header");
-    if (std::memcmp(magic, kMagic, sizeof magic) != 0) fail(PPM_ERROR_PARSE, origin + ": not a libppm partial render");
+    if (std::memcmp(magic, kPartialMagic, sizeof magic) != 0)
+        fail(PPM_ERROR_PARSE, origin + ": not a libppm partial render");
     const auto version = r.get<std::uint32_t>("header");
-    if (version != kVersion)
+    if (version != kPartialVersion)
         fail(PPM_ERROR_PARSE, origin + ": partial render version " + std::to_string(version) +
-                                  "; this libppm reads version " + std::to_string(kVersion));
-    if (r.get<std::uint32_t>("header") != kByteOrderMark)
+                                  "; this libppm reads version " + std::to_string(kPartialVersion));
+    if (r.get<std::uint32_t>("header") != kPartialByteOrderMark)
         fail(PPM_ERROR_PARSE, origin + ": partial render written on a machine of another byte order");
     if (size < sizeof(std::uint64_t)) fail(PPM_ERROR_PARSE, origin + ": truncated partial render");
     Fnv1a h;
@@ -164,40 +165,43 @@ Partial *Partial::parse(const char *data, std::size_t size, const std::string &o
     const RenderIdentity identity = get_identity(r);
     const ModeTraits *mode = find_mode(identity.mode);
     if (!mode || !mode->supports_partials)
-        corrupt(origin, "mode " + std::to_string(identity.mode) + " is not a mode of partial renders");
+        corrupt_partial(origin, "mode " + std::to_string(identity.mode) + " is not a mode of partial renders");
     const std::uint64_t pixels = std::uint64_t(identity.width) * identity.height;
     if (identity.width == 0 || identity.height == 0 || pixels > kMaxPixels)
-        corrupt(origin, "image size " + std::to_string(identity.width) + " x " + std::to_string(identity.height));
+        corrupt_partial(origin,
+                        "image size " + std::to_string(identity.width) + " x " + std::to_string(identity.height));
     if (identity.photons_per_pass < 1 || identity.photons_per_pass > std::uint64_t(kMaxPhotonsPerPass))
-        corrupt(origin, "photons_per_pass " + std::to_string(identity.photons_per_pass));
+        corrupt_partial(origin, "photons_per_pass " + std::to_string(identity.photons_per_pass));
     const auto pass_total = r.get<std::uint64_t>("header");
     const auto emitted = r.get<std::uint64_t>("header"), rejected = r.get<std::uint64_t>("header");
     const auto range_count = r.get<std::uint64_t>("pass ranges");
     if (range_count > kMaxRanges || range_count * 16 > r.remaining())
-        corrupt(origin, std::to_string(range_count) + " pass ranges");
+        corrupt_partial(origin, std::to_string(range_count) + " pass ranges");
     std::vector<PassSet::Range> ranges(range_count);
     for (PassSet::Range &range : ranges)
         range.first = r.get<std::uint64_t>("pass ranges"), range.end = r.get<std::uint64_t>("pass ranges");
     PassSet pass_set;
     if (!pass_set.assign_checked(std::move(ranges)))
-        corrupt(origin, "the pass ranges are not sorted, disjoint and non-empty");
+        corrupt_partial(origin, "the pass ranges are not sorted, disjoint and non-empty");
     if (!pass_set.empty() && pass_set.ranges().back().end > kPassIndexLimit)
-        corrupt(origin, "pass index " + std::to_string(pass_set.ranges().back().end - 1) + " of 2^32 or more");
-    if (pass_total > kPassIndexLimit) corrupt(origin, "a total of " + std::to_string(pass_total) + " passes");
+        corrupt_partial(origin, "pass index " + std::to_string(pass_set.ranges().back().end - 1) + " of 2^32 or more");
+    if (pass_total > kPassIndexLimit) corrupt_partial(origin, "a total of " + std::to_string(pass_total) + " passes");
     const std::uint64_t passes = pass_set.count();
-    if (passes == 0) corrupt(origin, "no pass");
+    if (passes == 0) corrupt_partial(origin, "no pass");
     // The identity holds the paths each pass traced (photons_per_pass resolved: paths_per_pass).
     const bool bidirectional = mode->bidirectional;
     const std::uint64_t per_pass = identity.photons_per_pass;
     if (emitted != passes * per_pass)
-        corrupt(origin, std::to_string(emitted) + (bidirectional ? " light subpaths in " : " photons emitted in ") +
-                            std::to_string(passes) + " passes of " + std::to_string(per_pass));
+        corrupt_partial(origin, std::to_string(emitted) +
+                                    (bidirectional ? " light subpaths in " : " photons emitted in ") +
+                                    std::to_string(passes) + " passes of " + std::to_string(per_pass));
     const auto stored_pixels = r.get<std::uint64_t>("pixels");
     const auto compressed_size = r.get<std::uint64_t>("pixels");
     if (stored_pixels != pixels)
-        corrupt(origin, std::to_string(stored_pixels) + " pixel records for " + std::to_string(pixels) + " pixels");
+        corrupt_partial(origin,
+                        std::to_string(stored_pixels) + " pixel records for " + std::to_string(pixels) + " pixels");
     if (compressed_size != r.remaining() - sizeof(std::uint64_t))
-        corrupt(origin, "the pixel records' size does not match the file's");
+        corrupt_partial(origin, "the pixel records' size does not match the file's");
 
     std::vector<unsigned char> raw;
     PassSums sums;
@@ -213,7 +217,7 @@ Partial *Partial::parse(const char *data, std::size_t size, const std::string &o
     const auto *compressed = reinterpret_cast<const unsigned char *>(data + r.position());
     if (uncompress(raw.data(), &raw_size, compressed, static_cast<uLong>(compressed_size)) != Z_OK ||
         raw_size != raw.size())
-        corrupt(origin, "the pixel records do not decompress to " + std::to_string(pixels) + " records");
+        corrupt_partial(origin, "the pixel records do not decompress to " + std::to_string(pixels) + " records");
     const unsigned char *in = raw.data();
     for (std::size_t i = 0; i < pixels; ++i) {
         PassSums::Pixel &p = sums.pixels()[i];
@@ -222,7 +226,7 @@ Partial *Partial::parse(const char *data, std::size_t size, const std::string &o
         std::memcpy(&p.photons, in, sizeof p.photons), in += sizeof p.photons;
         // Sums of values in [0, 2^80] quanta over at most 2^64 passes.
         for (const Fixed128 v : {p.radiance[0], p.radiance[1], p.radiance[2], p.radius})
-            if (v < 0) corrupt(origin, "pixel " + std::to_string(i) + ": a negative sum");
+            if (v < 0) corrupt_partial(origin, "pixel " + std::to_string(i) + ": a negative sum");
     }
     auto *partial = new Partial(identity, std::move(sums), origin);
     partial->set_pass_total(pass_total);

@@ -2,6 +2,7 @@
 #include "material/bsdf.h"
 
 #include "core/error.h"
+#include "material/bsdf_helpers.h"
 #include "material/fresnel.h"
 #include "math/warp.h"
 
@@ -13,11 +14,8 @@ namespace ppm {
 
 namespace {
 
-void require_reflectance(const Rgb &c, const char *what) {
-    if (!(c.is_finite() && c.min() >= 0 && c.max() <= 1))
-        invalid_argument(std::string(what) + " must lie in [0, 1] per channel, got (" + format_number(c.r) + ", " +
-                         format_number(c.g) + ", " + format_number(c.b) + ")");
-}
+using bsdf_helpers::reflect_local;
+using bsdf_helpers::require_reflectance;
 
 double require_eta(double int_ior, double ext_ior) {
     if (!(int_ior > 0 && std::isfinite(int_ior)))
@@ -27,7 +25,6 @@ double require_eta(double int_ior, double ext_ior) {
     return int_ior / ext_ior;
 }
 
-Vec3 reflect_local(const Vec3 &w) { return {-w.x, -w.y, w.z}; }
 Vec3 flip_z(const Vec3 &w) { return {w.x, w.y, -w.z}; }
 
 } // namespace

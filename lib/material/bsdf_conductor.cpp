@@ -11,6 +11,7 @@
 #include "material/bsdf.h"
 
 #include "core/error.h"
+#include "material/bsdf_helpers.h"
 #include "material/fresnel.h"
 
 #include <cmath>
@@ -20,22 +21,13 @@ namespace ppm {
 
 namespace {
 
-void require_reflectance(const Rgb &c, const char *what) {
-    if (!(c.is_finite() && c.min() >= 0 && c.max() <= 1))
-        invalid_argument(std::string(what) + " must lie in [0, 1] per channel, got (" + format_number(c.r) + ", " +
-                         format_number(c.g) + ", " + format_number(c.b) + ")");
-}
+using bsdf_helpers::require_alpha;
+using bsdf_helpers::require_reflectance;
 
 void require_index(const Rgb &c, const char *what) {
     if (!(c.is_finite() && c.min() >= 0))
         invalid_argument(std::string(what) + " must be finite and >= 0 per channel, got (" + format_number(c.r) + ", " +
                          format_number(c.g) + ", " + format_number(c.b) + ")");
-}
-
-void require_alpha(double alpha, const char *what) {
-    if (!(alpha > 0 && std::isfinite(alpha)))
-        invalid_argument(std::string("roughconductor ") + what + " must be finite and > 0, got " +
-                         format_number(alpha));
 }
 
 } // namespace
@@ -54,8 +46,8 @@ Bsdf Bsdf::conductor(const Rgb &eta, const Rgb &k, const Rgb &specular_reflectan
 
 Bsdf Bsdf::rough_conductor(MicrofacetType distribution, double alpha_u, double alpha_v, const Rgb &eta, const Rgb &k,
                            const Rgb &specular_reflectance, bool sample_visible) {
-    require_alpha(alpha_u, "alpha_u");
-    require_alpha(alpha_v, "alpha_v");
+    require_alpha(alpha_u, "roughconductor alpha_u");
+    require_alpha(alpha_v, "roughconductor alpha_v");
     require_index(eta, "roughconductor eta");
     require_index(k, "roughconductor k");
     require_reflectance(specular_reflectance, "roughconductor specular_reflectance");

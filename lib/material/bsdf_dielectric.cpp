@@ -7,6 +7,7 @@
 #include "material/bsdf.h"
 
 #include "core/error.h"
+#include "material/bsdf_helpers.h"
 #include "math/warp.h"
 
 #include <algorithm>
@@ -22,8 +23,10 @@ namespace ppm {
 
 namespace {
 
-double sqr(double x) { return x * x; }
-Vec3 reflect_local(const Vec3 &w) { return {-w.x, -w.y, w.z}; }
+using bsdf_helpers::reflect_local;
+using bsdf_helpers::require_alpha;
+using bsdf_helpers::sqr;
+
 Vec3 mulsign_z(const Vec3 &w, double s) { return s < 0 ? -w : w; }
 Vec3 reflect_about(const Vec3 &w, const Vec3 &m) { return 2.0 * dot(w, m) * m - w; }
 
@@ -41,11 +44,6 @@ Interface interface_at(double cos_i, double eta) {
 // Refraction of w about the microfacet normal m (Mitsuba's refract(wi, m, cos_t, eta_ti)).
 Vec3 refract_about(const Vec3 &w, const Vec3 &m, double cos_t, double eta_ti) {
     return (dot(w, m) * eta_ti + cos_t) * m - eta_ti * w;
-}
-
-void require_alpha(double alpha, const char *name) {
-    if (!(alpha > 0 && std::isfinite(alpha)))
-        invalid_argument(std::string(name) + " must be finite and > 0, got " + format_number(alpha));
 }
 
 double require_distinct_eta(double int_ior, double ext_ior, const char *type) {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "material/microfacet.h"
 
+#include "material/bsdf_helpers.h"
 #include "math/warp.h"
 
 #include <algorithm>
@@ -12,9 +13,9 @@ namespace ppm {
 
 namespace {
 
-constexpr double kInvSqrtPi = 0.56418958354775628695;
+using bsdf_helpers::sqr;
 
-double sqr(double x) { return x * x; }
+constexpr double kInvSqrtPi = 0.56418958354775628695;
 
 } // namespace
 

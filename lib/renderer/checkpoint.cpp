@@ -28,11 +28,11 @@ namespace ppm {
 
 namespace {
 
-constexpr char kMagic[8] = {'P', 'P', 'M', 'C', 'K', 'P', 'T', '\0'};
-constexpr std::uint32_t kVersion = 1;
-constexpr std::uint32_t kByteOrderMark = 0x01020304;
+constexpr char kCheckpointMagic[8] = {'P', 'P', 'M', 'C', 'K', 'P', 'T', '\0'};
+constexpr std::uint32_t kCheckpointVersion = 1;
+constexpr std::uint32_t kCheckpointByteOrderMark = 0x01020304;
 
-[[noreturn]] void corrupt(const std::string &path, const std::string &what) {
+[[noreturn]] void corrupt_checkpoint(const std::string &path, const std::string &what) {
     fail(PPM_ERROR_PARSE, path + ": corrupt checkpoint: " + what);
 }
 
@@ -41,14 +41,15 @@ constexpr std::uint32_t kByteOrderMark = 0x01020304;
 void check_counts(const std::string &path, std::uint64_t passes, std::uint64_t emitted, std::uint64_t slots) {
     // The API reports both counts as int64_t; passes <= emitted is checked below.
     if (emitted > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
-        corrupt(path, std::to_string(emitted) + " photons emitted, more than 2^63 - 1");
+        corrupt_checkpoint(path, std::to_string(emitted) + " photons emitted, more than 2^63 - 1");
     if (passes == 0 && (emitted != 0 || slots != 0))
-        corrupt(path, "no pass recorded, but " + std::to_string(emitted) + " photons emitted and " +
-                          std::to_string(slots) + " pixel slots");
-    if (passes > 0 && slots == 0) corrupt(path, std::to_string(passes) + " passes recorded but no pixel statistics");
+        corrupt_checkpoint(path, "no pass recorded, but " + std::to_string(emitted) + " photons emitted and " +
+                                     std::to_string(slots) + " pixel slots");
+    if (passes > 0 && slots == 0)
+        corrupt_checkpoint(path, std::to_string(passes) + " passes recorded but no pixel statistics");
     if (passes > 0 && (emitted < passes || emitted / passes > kMaxPhotonsPerPass))
-        corrupt(path, std::to_string(emitted) + " photons emitted do not fit " + std::to_string(passes) +
-                          " passes of 1 to " + std::to_string(kMaxPhotonsPerPass) + " photons");
+        corrupt_checkpoint(path, std::to_string(emitted) + " photons emitted do not fit " + std::to_string(passes) +
+                                     " passes of 1 to " + std::to_string(kMaxPhotonsPerPass) + " photons");
 }
 
 } // namespace
@@ -69,8 +70,8 @@ void Renderer::check_statistics(const std::string &path, const std::vector<Pixel
     const double largest_r2 = footprint_r2(pass_inputs(), longest_path);
     const double most_photons = static_cast<double>(emitted) * kMaxDepthLimit;
     const auto bad = [&](std::size_t slot, const char *field, double value, const char *rule) {
-        corrupt(path,
-                "pixel slot " + std::to_string(slot) + ": " + field + " = " + format_number(value) + " (" + rule + ")");
+        corrupt_checkpoint(path, "pixel slot " + std::to_string(slot) + ": " + field + " = " + format_number(value) +
+                                     " (" + rule + ")");
     };
     const auto check_colour = [&](std::size_t slot, const char *field, const Rgb &c) {
         for (double v : {c.r, c.g, c.b})
@@ -138,8 +139,8 @@ void Renderer::save_checkpoint(const std::string &path) const {
     film_.with_state([&](const std::vector<std::uint32_t> &slot_pixel, const std::vector<PixelStatistics> &stats,
                          std::uint64_t passes, std::uint64_t emitted) {
         const std::uint64_t slots = slot_pixel.size();
-        w.put_bytes(kMagic, sizeof kMagic);
-        w.put(kVersion), w.put(kByteOrderMark);
+        w.put_bytes(kCheckpointMagic, sizeof kCheckpointMagic);
+        w.put(kCheckpointVersion), w.put(kCheckpointByteOrderMark);
         w.put(static_cast<std::uint32_t>(width())), w.put(static_cast<std::uint32_t>(height()));
         w.put(static_cast<std::uint32_t>(settings_.mode)), w.put(static_cast<std::uint32_t>(settings_.direct_lighting));
         w.put(settings_.seed), w.put(settings_.initial_radius), w.put(settings_.initial_radius_pixels);
@@ -168,14 +169,15 @@ void Renderer::load_checkpoint(const std::string &path) {
     if (mode_traits(settings_.mode).supports_partials && bytes.compare(0, 8, "PPMPART", 8) == 0)
         return load_partial_checkpoint(path, bytes);
     ByteReader r(path, "checkpoint", bytes.data(), bytes.size());
-    char magic[sizeof kMagic];
+    char magic[sizeof kCheckpointMagic];
     r.get_bytes(magic, sizeof magic, "header");
-    if (std::memcmp(magic, kMagic, sizeof magic) != 0) fail(PPM_ERROR_PARSE, path + ": not a libppm checkpoint");
+    if (std::memcmp(magic, kCheckpointMagic, sizeof magic) != 0)
+        fail(PPM_ERROR_PARSE, path + ": not a libppm checkpoint");
     const auto version = r.get<std::uint32_t>("header");
-    if (version != kVersion)
+    if (version != kCheckpointVersion)
         fail(PPM_ERROR_PARSE, path + ": checkpoint version " + std::to_string(version) +
-                                  "; this libppm reads version " + std::to_string(kVersion));
-    if (r.get<std::uint32_t>("header") != kByteOrderMark)
+                                  "; this libppm reads version " + std::to_string(kCheckpointVersion));
+    if (r.get<std::uint32_t>("header") != kCheckpointByteOrderMark)
         fail(PPM_ERROR_PARSE, path + ": checkpoint written on a machine of another byte order");
     if (bytes.size() < sizeof(std::uint64_t)) fail(PPM_ERROR_PARSE, path + ": truncated checkpoint");
     Fnv1a h;
