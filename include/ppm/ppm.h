@@ -570,7 +570,7 @@ PPM_API ppm_status ppm_scene_add_dielectric_material(ppm_scene scene, double int
                                                      uint32_t *out_material_id);
 /* Diffuse base under a smooth dielectric coat, like glazed porcelain: "plastic" with
  * `diffuse_reflectance` (3 numbers), `int_ior` and `ext_ior` (Mitsuba's defaults 1.49 and
- * 1.000277; `nonlinear` false, the only value libppm supports). */
+ * 1.000277). The named-parameter form also takes `nonlinear` (Mitsuba's: false). */
 PPM_API ppm_status ppm_scene_add_coated_material(ppm_scene scene, const double diffuse_reflectance[3], double int_ior,
                                                  double ext_ior, uint32_t *out_material_id);
 

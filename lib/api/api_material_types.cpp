@@ -116,9 +116,9 @@ uint32_t add_dielectric(ppm_scene_t &scene, Params &p) {
 uint32_t add_plastic(ppm_scene_t &scene, Params &p) {
     const ColorOrTexture c = reflectance_or_texture(scene, p, "diffuse_reflectance", Rgb(0.5));
     const double int_ior = p.positive("int_ior", kPolypropyleneIor), ext_ior = p.positive("ext_ior", kAirIor);
-    if (p.boolean("nonlinear", false)) p.fail("nonlinear", "true is not supported (only false)");
+    const bool nonlinear = p.boolean("nonlinear", false);
     p.finish();
-    return add(scene, Bsdf::coated(c.value, int_ior, ext_ior), c);
+    return add(scene, Bsdf::coated(c.value, int_ior, ext_ior, nonlinear), c);
 }
 
 uint32_t add_thindielectric(ppm_scene_t &scene, Params &p) {
@@ -164,9 +164,10 @@ uint32_t add_roughplastic(ppm_scene_t &scene, Params &p) {
     const ColorOrTexture c = reflectance_or_texture(scene, p, "diffuse_reflectance", Rgb(0.5));
     const Roughness r = read_roughness(p, false);
     const double int_ior = p.positive("int_ior", kPolypropyleneIor), ext_ior = p.positive("ext_ior", kAirIor);
-    if (p.boolean("nonlinear", false)) p.fail("nonlinear", "true is not supported (only false)");
+    const bool nonlinear = p.boolean("nonlinear", false);
     p.finish();
-    return add(scene, Bsdf::rough_plastic(c.value, r.type, r.alpha_u, int_ior, ext_ior, r.sample_visible), c);
+    return add(scene, Bsdf::rough_plastic(c.value, r.type, r.alpha_u, int_ior, ext_ior, r.sample_visible, nonlinear),
+               c);
 }
 
 // Mitsuba's `twosided` makes a one-sided BSDF two-sided. libppm's opaque materials already

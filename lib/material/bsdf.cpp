@@ -84,12 +84,14 @@ Bsdf Bsdf::dielectric(double int_ior, double ext_ior) {
     return b;
 }
 
-Bsdf Bsdf::coated(const Rgb &diffuse_reflectance, double int_ior, double ext_ior) {
+Bsdf Bsdf::coated(const Rgb &diffuse_reflectance, double int_ior, double ext_ior, bool nonlinear) {
     require_reflectance(diffuse_reflectance, "coated diffuse_reflectance");
     Bsdf b;
     b.type_ = Type::Coated;
     b.eta_ = require_eta(int_ior, ext_ior);
-    b.coat_diffuse_scale_ = 1.0 / (1.0 - fresnel_diffuse_reflectance(b.eta_));
+    const double fdr = fresnel_diffuse_reflectance(b.eta_);
+    b.coat_diffuse_scale_ = 1.0 / (1.0 - fdr);
+    if (nonlinear) b.nonlinear_internal_reflectance_ = 1.0 - (1.0 - fdr) / (b.eta_ * b.eta_);
     return b.with_reflectance(diffuse_reflectance);
 }
 
@@ -105,6 +107,14 @@ Bsdf Bsdf::with_reflectance(const Rgb &reflectance) const {
     b.reflectance_ = reflectance;
     // Mitsuba's plastic steers samples by the lobes' mean reflectances (specular: 1).
     b.specular_sampling_weight_ = 1.0 / (1.0 + reflectance.mean());
+    // A nonlinear coat: R_d / (1 - R_d F) = R_d (1 - F) / (1 - R_d F) / (1 - F), so the
+    // linear lobe (R / (1 - F)) gives it with R = R_d (1 - F) / (1 - R_d F), which lies in
+    // [0, R_d] for R_d, F in [0, 1].
+    const double f = nonlinear_internal_reflectance_;
+    if (f >= 0) {
+        const auto bounced = [f](double d) { return d * (1.0 - f) / (1.0 - d * f); };
+        b.reflectance_ = Rgb(bounced(reflectance.r), bounced(reflectance.g), bounced(reflectance.b));
+    }
     return b;
 }
 

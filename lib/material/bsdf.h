@@ -142,7 +142,12 @@ public:
     // coat leaves with the base colour, the internal bounces are folded into R_d. So
     // albedo(wo) = F + (1 - F) R_d <= 1 and f is symmetric. Mitsuba approximates Fdr by a
     // fitted polynomial; we integrate it (f differs from Mitsuba 3.9.1 by 0.12 % at eta 1.5).
-    static Bsdf coated(const Rgb &diffuse_reflectance, double int_ior, double ext_ior);
+    //
+    // nonlinear = true (Mitsuba's `nonlinear`): the internal bounces darken and saturate the
+    // base as a real coated surface does, R_d / (1 - R_d Fdr_int) in place of
+    // R_d / (1 - Fdr_int), Fdr_int = 1 - (1 - Fdr) / eta^2 the coat's internal diffuse
+    // reflectance; per channel and per texel.
+    static Bsdf coated(const Rgb &diffuse_reflectance, double int_ior, double ext_ior, bool nonlinear = false);
     // Mitsuba 3 `conductor` (src/bsdfs/conductor.cpp): a smooth metal reflecting
     // specular_reflectance * F(cos wo) with F the unpolarised Fresnel reflectance of the
     // complex index eta + i k (material/fresnel.h). eta, k finite and >= 0 per channel. (With
@@ -173,14 +178,17 @@ public:
     // creation as Mitsuba does (its Gauss-Legendre quadrature and its 64-point table, so f
     // matches Mitsuba's). Isotropic; Mitsuba defaults beckmann, alpha 0.1, int_ior 1.49
     // (polypropylene), ext_ior 1.000277, diffuse_reflectance 0.5.
+    // nonlinear = true: R_d / (1 - R_d R_int) in place of R_d / (1 - R_int), as coated().
     static Bsdf rough_plastic(const Rgb &diffuse_reflectance, MicrofacetType distribution, double alpha, double int_ior,
-                              double ext_ior, bool sample_visible = true);
+                              double ext_ior, bool sample_visible = true, bool nonlinear = false);
     // No surface: a specular lobe that passes light straight through (wi = -wo, weight 1),
     // the pass-through part of Mitsuba 3's `mask` (src/bsdfs/mask.cpp).
     static Bsdf null();
 
     // The same material with another base/specular colour (e.g. from a texture), without
-    // revalidating or recomputing the coat's Fdr. Components must lie in [0, 1].
+    // revalidating or recomputing the coat's Fdr. Components must lie in [0, 1]. For a
+    // nonlinear coat the stored reflectance (reflectance()) is the base colour with the
+    // internal bounces applied, which the linear formulas then use as they are.
     Bsdf with_reflectance(const Rgb &reflectance) const;
 
     Type type() const { return type_; }
@@ -271,6 +279,7 @@ private:
     double eta_ = 1;
     double coat_diffuse_scale_ = 1;              // 1 / (1 - Fdr); rough plastic 1 / (eta^2 (1 - R_int))
     double specular_sampling_weight_ = 1;        // Mitsuba's s_mean / (s_mean + d_mean)
+    double nonlinear_internal_reflectance_ = -1; // a nonlinear coat's Fdr_int or R_int; < 0: linear
     Rgb conductor_eta_, conductor_k_;            // complex index of refraction (conductors)
     MicrofacetDistribution distribution_;        // rough conductor, rough dielectric, rough plastic
     const RoughCoatTable *coat_table_ = nullptr; // rough plastic (interned, immortal)

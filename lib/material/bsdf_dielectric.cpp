@@ -178,7 +178,7 @@ Bsdf Bsdf::rough_dielectric(MicrofacetType distribution, double alpha_u, double 
 }
 
 Bsdf Bsdf::rough_plastic(const Rgb &diffuse_reflectance, MicrofacetType distribution, double alpha, double int_ior,
-                         double ext_ior, bool sample_visible) {
+                         double ext_ior, bool sample_visible, bool nonlinear) {
     if (!(diffuse_reflectance.is_finite() && diffuse_reflectance.min() >= 0 && diffuse_reflectance.max() <= 1))
         invalid_argument("roughplastic diffuse_reflectance must lie in [0, 1] per channel, got (" +
                          format_number(diffuse_reflectance.r) + ", " + format_number(diffuse_reflectance.g) + ", " +
@@ -192,6 +192,7 @@ Bsdf Bsdf::rough_plastic(const Rgb &diffuse_reflectance, MicrofacetType distribu
     b.coat_table_ = RoughCoatTable::get(distribution, b.distribution_.alpha_u(), b.eta_);
     // 1 / eta^2 / (1 - R_int): Mitsuba's m_inv_eta_2 over its linear normalisation.
     b.coat_diffuse_scale_ = 1.0 / (b.eta_ * b.eta_ * (1.0 - b.coat_table_->internal_reflectance));
+    if (nonlinear) b.nonlinear_internal_reflectance_ = b.coat_table_->internal_reflectance;
     return b.with_reflectance(diffuse_reflectance);
 }
 

@@ -90,6 +90,10 @@ public:
         // Objects at the top with an id are converted where they are referred to; the BSDFs
         // also become the scene's named materials.
         for (const Pending &pending : top_level_) convert_top_level(pending);
+        for (const Pending &pending : unattached_area_emitters_)
+            if (!referred_to_.count(pending.node.attribute("id").value()))
+                warn(pending.node, *pending.source,
+                     "this area emitter is never used: no <shape> refers to its id, and it emits only from one");
         if (out_.root["shapes"].empty()) out_.root.removeMember("shapes");
         // A parameter given from outside that no $name takes is likely a typo: said, not fatal
         // (Mitsuba accepts it too).
@@ -479,6 +483,7 @@ private:
                 const std::string id = substitute(child, source, "id");
                 const auto found = by_id_.find(id);
                 if (found == by_id_.end()) error(child, source, "no object has the id \"" + id + "\"");
+                referred_to_.insert(id);
                 std::string role = child.attribute("name") ? std::string(child.attribute("name").value())
                                                            : std::string(found->second.node.name());
                 if (role == "bsdf" && !child.attribute("name") && out["type"].asString() == "blendbsdf")
@@ -548,6 +553,13 @@ private:
         } else if (tag == "shape") {
             Json::Value shape = this->shape(object(node, source));
             if (!shape.isNull()) root["shapes"].append(shape);
+        } else if (tag == "emitter" && substitute(node, source, "type") == "area") {
+            // An area emitter is the emission of the shape that holds it: at the top, it is
+            // defined for the shapes that refer to its id (before or after this point).
+            if (id.empty())
+                skip(node, source, "an area emitter at the top has no shape to emit from (put it inside a <shape>)");
+            else
+                unattached_area_emitters_.push_back(pending);
         } else if (tag == "emitter") {
             Json::Value emitter = this->emitter(object(node, source));
             if (!emitter.isNull()) root["emitters"].append(emitter);
@@ -737,6 +749,8 @@ private:
     std::vector<std::string> include_stack_;
     std::map<std::string, Pending> by_id_;
     std::vector<Pending> top_level_;
+    std::set<std::string> referred_to_;             // ids named by a <ref>
+    std::vector<Pending> unattached_area_emitters_; // at the top, with an id
 };
 
 } // namespace

@@ -75,6 +75,8 @@ void assert_albedo(const Estimate &e, const Rgb &expected, bool at_most_one = tr
     }
 }
 
+Rgb base_of_texel() { return {0.7, 0.35, 0.05}; }
+
 void expect_invalid_argument(void (*make)()) {
     try {
         make();
@@ -288,6 +290,40 @@ void coated_albedo_is_fresnel_plus_transmitted_base(void **) {
     assert_albedo(sampled_albedo(Bsdf::coated(Rgb(0.0), 1.5, 1.0), wo, TransportMode::Radiance, 6), Rgb(f));
 }
 
+// A nonlinear coat (Mitsuba's nonlinear = true): light that entered bounces between the base
+// and the coat's inside, leaving with 1 - Fdr_int each time, so the diffuse albedo is the
+// geometric series (1 - F) R_d (1 - Fdr_int) sum (R_d Fdr_int)^k, Fdr_int the internal
+// diffuse reflectance (Fdr at 1 / eta).
+void nonlinear_coated_albedo_sums_the_internal_bounces(void **) {
+    for (double eta : {1.5, 1.33}) {
+        const Rgb base{0.9, 0.5, 0.1};
+        const Bsdf coated = Bsdf::coated(base, eta, 1.0, true);
+        const double inside = fresnel_diffuse_reflectance(1 / eta);
+        for (double c : kCosines) {
+            const Vec3 wo{0, std::sqrt(1 - c * c), c};
+            const double f = fresnel_dielectric(c, eta);
+            const auto diffuse = [&](double d) { return (1 - f) * d * (1 - inside) / (1 - d * inside); };
+            const Rgb expected(f + diffuse(base.r), f + diffuse(base.g), f + diffuse(base.b));
+            assert_albedo(sampled_albedo(coated, wo, TransportMode::Radiance, 8), expected);
+            assert_albedo(sampled_albedo(coated, wo, TransportMode::Importance, 9), expected);
+        }
+    }
+    // A white base is the same either way; a texel goes through the same bounces.
+    const Vec3 wo = direction(40 * kDeg, 0), wi = direction(20 * kDeg, 1);
+    assert_close(Bsdf::coated(Rgb(1.0), 1.5, 1.0, true).eval(wo, wi).g, Bsdf::coated(Rgb(1.0), 1.5, 1.0).eval(wo, wi).g,
+                 1e-12);
+    const Bsdf textured = Bsdf::coated(Rgb(0.2), 1.5, 1.0, true).with_reflectance(base_of_texel());
+    assert_close(textured.eval(wo, wi).r, Bsdf::coated(base_of_texel(), 1.5, 1.0, true).eval(wo, wi).r, 1e-15);
+    // Rough plastic: the base lobe scales by (1 - R_int) / (1 - R_d R_int), R_int its table's.
+    const double d = 0.6;
+    const Bsdf rough = Bsdf::rough_plastic(Rgb(d), MicrofacetType::Beckmann, 0.3, 1.5, 1.0, true, true);
+    const Bsdf linear = Bsdf::rough_plastic(Rgb(d), MicrofacetType::Beckmann, 0.3, 1.5, 1.0, true, false);
+    const Bsdf black = Bsdf::rough_plastic(Rgb(0.0), MicrofacetType::Beckmann, 0.3, 1.5, 1.0, true, false);
+    const double r_int = linear.rough_coat_internal_reflectance();
+    const double coat = black.eval(wo, wi).b;
+    assert_close(rough.eval(wo, wi).b - coat, (linear.eval(wo, wi).b - coat) * (1 - r_int) / (1 - d * r_int), 1e-12);
+}
+
 // Glass: in importance (photon) mode every sample carries weight 1, so R + T = 1 and the
 // reflected fraction is R; in radiance mode transmission is scaled by 1/eta_t^2.
 void glass_conserves_energy_in_importance_mode(void **) {
@@ -489,6 +525,7 @@ int main() {
         cmocka_unit_test(fixed_wo_lobe_matches_eval),
         cmocka_unit_test(back_side_of_opaque_materials_mirrors_the_front),
         cmocka_unit_test(with_reflectance_keeps_the_coat),
+        cmocka_unit_test(nonlinear_coated_albedo_sums_the_internal_bounces),
         cmocka_unit_test(warp_sine_and_cosine_match_libm),
         cmocka_unit_test(invalid_parameters_are_rejected),
     };

@@ -310,6 +310,36 @@ void blendbsdf_and_mask_nest_their_bsdfs(void **) {
     assert_string_equal(shapes[2]["bsdf"]["bsdf"].asCString(), "red"); // twosided unwrapped
 }
 
+// Mitsuba's own Cornell box defines its area emitter at the top with an id, after the include
+// whose shape refers to it: the shape emits, and the emitter is no light of its own.
+void an_area_emitter_at_the_top_is_the_emission_of_the_shapes_that_refer_to_it(void **) {
+    write("luminaire.xml", "<scene version=\"3.0.0\"><shape type=\"rectangle\"><ref id=\"lamp\"/></shape></scene>");
+    const XmlScene scene =
+        read_mitsuba_xml(write("lamp.xml", "<scene version=\"3.0.0\"><include filename=\"luminaire.xml\"/>\n"
+                                           "<emitter type=\"area\" id=\"lamp\"><rgb name=\"radiance\" value=\"3\"/>"
+                                           "</emitter>\n<emitter type=\"area\" id=\"spare\"/></scene>"),
+                         {});
+    const Json::Value &root = scene.root;
+    assert_int_equal(root["shapes"].size(), 1);
+    assert_string_equal(root["shapes"][0]["emitter"]["type"].asCString(), "area");
+    assert_close(root["shapes"][0]["emitter"]["radiance"][1].asDouble(), 3, 0);
+    assert_false(root.isMember("emitters"));
+    // The one no shape refers to is said, at its element.
+    assert_int_equal(scene.warnings.size(), 1);
+    assert_contains(scene.warnings[0], "lamp.xml:3:1: <emitter>: this area emitter is never used");
+
+    // Without an id it can belong to no shape: an error, or skipped with --lenient.
+    const std::string loose = write("loose.xml", "<scene version=\"3.0.0\"><shape type=\"sphere\"/>\n"
+                                                 "<emitter type=\"area\"/></scene>");
+    assert_contains(error_of([&] { read_mitsuba_xml(loose, {}); }),
+                    "loose.xml:2:1: <emitter>: an area emitter at the top has no shape to emit from");
+    XmlOptions lenient;
+    lenient.lenient = true;
+    const XmlScene skipped = read_mitsuba_xml(loose, lenient);
+    assert_false(skipped.root.isMember("emitters"));
+    assert_int_equal(skipped.warnings.size(), 1);
+}
+
 int setup(void **) { return test_make_folder(folder, sizeof folder, "ppm-xml-"); }
 int teardown(void **) {
     test_remove_folder(folder);
@@ -326,6 +356,7 @@ int main() {
         cmocka_unit_test(lenient_mode_substitutes_with_a_warning_and_strict_mode_keeps_the_type),
         cmocka_unit_test(malformed_or_inconsistent_files_are_located_errors),
         cmocka_unit_test(blendbsdf_and_mask_nest_their_bsdfs),
+        cmocka_unit_test(an_area_emitter_at_the_top_is_the_emission_of_the_shapes_that_refer_to_it),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

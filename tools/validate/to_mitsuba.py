@@ -10,8 +10,7 @@ keys with the same defaults (transforms as ordered operation lists, colours as a
     `hdrfilm` with a box reconstruction filter, an `independent` sampler;
   - integrator: `path` with max_depth = ours + 1 (Mitsuba also counts the emitter);
   - bsdfs: `diffuse`, `conductor` and `roughconductor` (named `material` or `eta`/`k`),
-    `dielectric`, `plastic`
-    (`nonlinear: false`); the opaque ones wrapped in `twosided`, as libppm's are two-sided;
+    `dielectric`, `plastic` and `roughplastic` (with their `nonlinear`); the opaque ones wrapped in `twosided`, as libppm's are two-sided;
     `bitmap` textures with to_uv = translate(offset) scale(scale), bilinear, repeating;
   - emitters: `point`, `spot`, and `area` emitters on shapes;
   - shapes: `sphere`, `rectangle`, `obj`; a `quad` becomes a `rectangle` whose to_world
@@ -377,7 +376,7 @@ class Translator:
                         out[key] = b[key]
             return out
         elif kind == "roughplastic":
-            inner = {"type": "roughplastic", "nonlinear": False,
+            inner = {"type": "roughplastic", "nonlinear": bool(b.get("nonlinear", False)),
                      "diffuse_reflectance": self.texture_or_colour(b.get("diffuse_reflectance", 0.5),
                                                                    f"{where}.diffuse_reflectance"),
                      "int_ior": number(b.get("int_ior", 1.49), f"{where}.int_ior"),
@@ -387,9 +386,7 @@ class Translator:
                     inner[key] = b[key]
         elif kind == "plastic":
             check_keys(b, {"type", "diffuse_reflectance", "int_ior", "ext_ior", "nonlinear"}, where)
-            if b.get("nonlinear", False):
-                raise SceneError(f"{where}.nonlinear: true is not supported")
-            inner = {"type": "plastic", "nonlinear": False,
+            inner = {"type": "plastic", "nonlinear": bool(b.get("nonlinear", False)),
                      "diffuse_reflectance": self.texture_or_colour(b.get("diffuse_reflectance", 0.5),
                                                                    f"{where}.diffuse_reflectance"),
                      "int_ior": number(b.get("int_ior", 1.49), f"{where}.int_ior"),
