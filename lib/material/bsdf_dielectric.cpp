@@ -25,6 +25,7 @@ namespace {
 
 using bsdf_helpers::reflect_local;
 using bsdf_helpers::require_alpha;
+using bsdf_helpers::require_reflectance;
 using bsdf_helpers::sqr;
 
 Vec3 mulsign_z(const Vec3 &w, double s) { return s < 0 ? -w : w; }
@@ -179,10 +180,7 @@ Bsdf Bsdf::rough_dielectric(MicrofacetType distribution, double alpha_u, double 
 
 Bsdf Bsdf::rough_plastic(const Rgb &diffuse_reflectance, MicrofacetType distribution, double alpha, double int_ior,
                          double ext_ior, bool sample_visible, bool nonlinear) {
-    if (!(diffuse_reflectance.is_finite() && diffuse_reflectance.min() >= 0 && diffuse_reflectance.max() <= 1))
-        invalid_argument("roughplastic diffuse_reflectance must lie in [0, 1] per channel, got (" +
-                         format_number(diffuse_reflectance.r) + ", " + format_number(diffuse_reflectance.g) + ", " +
-                         format_number(diffuse_reflectance.b) + ")");
+    require_reflectance(diffuse_reflectance, "roughplastic diffuse_reflectance");
     require_alpha(alpha, "roughplastic alpha");
     Bsdf b;
     b.type_ = Type::RoughPlastic;
