@@ -595,7 +595,7 @@ PPM_API ppm_status ppm_scene_add_point_light(ppm_scene scene, const double posit
                                              uint32_t *out_light_id);
 /* Spot light: `intensity` in W/sr on the axis from position to target, full out to
  * beam_width degrees and falling linearly in angle to 0 at cutoff_angle degrees
- * (0 < beam_width <= cutoff_angle <= 90; Mitsuba's defaults: cutoff_angle 20, beam_width
+ * (0 < beam_width <= cutoff_angle <= 180; Mitsuba's defaults: cutoff_angle 20, beam_width
  * 3/4 of it). It is
  * "spot" with `intensity`, `cutoff_angle`, `beam_width` and a `to_world` that takes the
  * origin to position and +z along target - position (such as look_at(position, target, up)

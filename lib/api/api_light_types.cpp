@@ -46,7 +46,7 @@ uint32_t add_point(ppm_scene_t &scene, Params &p) {
 uint32_t add_spot(ppm_scene_t &scene, Params &p) {
     const ppm::Affine to_world = p.transform("to_world", {});
     const Rgb intensity = emission(p, "intensity", Rgb(1));
-    const double cutoff = p.number_in("cutoff_angle", 0, 90, 20);
+    const double cutoff = p.number_in("cutoff_angle", 0, 180, 20);
     const double beam = p.number_in("beam_width", 0, cutoff, cutoff * 0.75);
     p.finish();
     const Vec3 position = scene_point(p, "to_world", to_world.point({0, 0, 0}));

@@ -5,6 +5,7 @@
 #include "api/api_camera.h"
 #include "api/api_keys.h"
 #include "api/api_renderer.h"
+#include "scenefile/load_error.h"
 #include "scenefile/scene_file.h"
 
 #include <algorithm>
@@ -80,8 +81,15 @@ ppm::SceneFileSource source_with_options(const ppm_scene_file_options *options) 
     return source;
 }
 
+// The warnings of a file that fails to load are given too: they often explain the error.
 ppm_scene_file load(ppm_context context, const ppm::SceneFileSource &source) {
-    auto *file = new ppm_scene_file_t(context, source);
+    ppm_scene_file_t *file = nullptr;
+    try {
+        file = new ppm_scene_file_t(context, source);
+    } catch (const ppm::LoadError &e) {
+        for (const std::string &warning : e.warnings()) context->warn(warning);
+        throw;
+    }
     for (const std::string &warning : file->warnings()) context->warn(warning);
     return file;
 }

@@ -2,7 +2,8 @@
 // Layout (little endian), per mesh:
 //   u16 0x041C, u16 version (3 or 4), then a zlib stream holding
 //   u32 flags (0x0001 normals, 0x0002 texture coordinates, 0x0008 colours, 0x0010 face
-//   normals, 0x1000 single precision, 0x2000 double precision), a NUL-terminated name
+//   normals, 0x1000 single precision, 0x2000 double precision; as in Mitsuba's loader, the
+//   data are doubles exactly when 0x2000 is set, and other bits are ignored), a NUL-terminated name
 //   (version 4 only), u64 vertex count, u64 triangle count, positions (3 per vertex), normals,
 //   texture coordinates, colours (each when flagged), then 3 indices per triangle (u32, or u64
 //   when there are more than 2^32 vertices).
@@ -28,9 +29,7 @@ namespace {
 
 constexpr std::uint16_t kMagic = 0x041C;
 constexpr std::uint32_t kHasNormals = 0x0001, kHasTexcoords = 0x0002, kHasColours = 0x0008, kFaceNormals = 0x0010,
-                        kSinglePrecision = 0x1000, kDoublePrecision = 0x2000;
-constexpr std::uint32_t kKnownFlags =
-    kHasNormals | kHasTexcoords | 0x0004 | kHasColours | kFaceNormals | kSinglePrecision | kDoublePrecision;
+                        kDoublePrecision = 0x2000;
 
 template <class T> T little_endian(const unsigned char *bytes) {
     T value;
@@ -144,10 +143,9 @@ private:
         Inflater in(bytes_, offset, where_);
         SerializedMesh result;
         const std::uint32_t flags = in.read<std::uint32_t>("flags");
-        if (flags & ~kKnownFlags) fail(PPM_ERROR_PARSE, where_ + ": unknown flags " + std::to_string(flags));
+        // Files written by other tools set bits that Mitsuba's loader does not read (0x0100 has
+        // been seen) or leave the precision unflagged: read as Mitsuba reads them.
         const bool doubles = (flags & kDoublePrecision) != 0;
-        if (doubles == ((flags & kSinglePrecision) != 0))
-            fail(PPM_ERROR_PARSE, where_ + ": the flags must choose exactly one of single and double precision");
         if (version_ == 4) {
             for (char c; (c = in.read<char>("name")) != '\0';) {
                 if (result.name.size() > 4096) fail(PPM_ERROR_PARSE, where_ + ": the mesh name is not terminated");

@@ -136,8 +136,8 @@ Light Light::spot(const Vec3 &position, const Vec3 &target, const Rgb &intensity
     check_point(target, "target");
     check_color(intensity, "intensity");
     if (!(length2(target - position) > 0)) invalid_argument("spot light target equals its position");
-    if (!(cutoff_angle_degrees > 0 && cutoff_angle_degrees <= 90))
-        invalid_argument("spot light cutoff_angle must be in (0, 90] degrees, not " +
+    if (!(cutoff_angle_degrees > 0 && cutoff_angle_degrees <= 180))
+        invalid_argument("spot light cutoff_angle must be in (0, 180] degrees, not " +
                          format_number(cutoff_angle_degrees));
     if (!(beam_width_degrees > 0 && beam_width_degrees <= cutoff_angle_degrees))
         invalid_argument("spot light beam_width must be in (0, cutoff_angle] degrees, not " +

@@ -81,7 +81,8 @@ public:
     enum class Type { Point, Spot, Quad, Sphere, Disk, Cylinder, Mesh, Constant, Envmap, Directional };
 
     // Factories check their arguments (finite, non-negative colours; positive sizes; angles
-    // with 0 < beam_width <= cutoff_angle <= 90 degrees) and throw ppm::Error naming the bad one.
+    // with 0 < beam_width <= cutoff_angle <= 180 degrees; Mitsuba accepts wide
+    // cones, and 180 lights the whole sphere) and throw ppm::Error naming the bad one.
     static Light point(const Vec3 &position, const Rgb &intensity);
     static Light spot(const Vec3 &position, const Vec3 &target, const Rgb &intensity, double cutoff_angle_degrees,
                       double beam_width_degrees);

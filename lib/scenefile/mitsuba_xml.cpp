@@ -7,6 +7,7 @@
 #include "core/suggest.h"
 #include "io/text_file.h"
 #include "math/spectrum.h"
+#include "scenefile/load_error.h"
 
 #include <pugixml.hpp>
 
@@ -14,7 +15,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
+#include <filesystem>
 #include <memory>
 #include <set>
 
@@ -191,10 +192,14 @@ private:
             error(scene, current, "the root element must be <scene>, not <" + std::string(scene.name()) + ">");
         check_version(scene, current);
         include_stack_.push_back(path);
+        // An included file's <path> folders serve its own includes only: Mitsuba resolves the
+        // files that properties name after parsing, with the main file's folders.
+        const std::vector<std::string> outer_folders = search_folders_;
         for (const pugi::xml_node &child : scene.children()) {
             if (child.type() != pugi::node_element) continue;
             read_top_level(child, current);
         }
+        if (included_from) search_folders_ = outer_folders;
         include_stack_.pop_back();
     }
 
@@ -216,9 +221,10 @@ private:
         } else if (tag == "include") {
             check_attributes(node, source, {"filename"});
             const std::pair<pugi::xml_node, const Source *> from(node, &source);
-            read_file(resolve(source, substitute(node, source, "filename")), &from);
+            read_file(resolve_include(source, substitute(node, source, "filename")), &from);
         } else if (tag == "path") {
-            warn(node, source, "ignored: file names are resolved relative to the scene file");
+            check_attributes(node, source, {"value"});
+            add_search_folder(node, source, substitute(node, source, "value"));
         } else if (object_tags().count(tag)) {
             const std::string id = node.attribute("id").value();
             if (!id.empty()) {
@@ -231,18 +237,70 @@ private:
         }
     }
 
-    std::string resolve(const Source &source, const std::string &name) const {
-        return name.empty() || name[0] == '/' ? name : source.folder + name;
+    // ---- file names, searched as Mitsuba's file resolver searches them ------------------
+
+    static bool exists(const std::string &path) {
+        std::error_code ignored;
+        return std::filesystem::exists(path, ignored);
+    }
+    static bool is_folder(const std::string &path) {
+        std::error_code ignored;
+        return std::filesystem::is_directory(path, ignored);
     }
 
-    // A file a property names (a mesh, a texture): relative to the file that names it, or, as
-    // Mitsuba's file resolver also finds it, to the main scene file (older scenes split into
-    // included fragments name their meshes relative to the main file).
-    std::string resolve_data_file(const Source &source, const std::string &name) const {
-        const std::string beside = resolve(source, name);
-        if (name.empty() || name[0] == '/' || std::ifstream(beside).good()) return beside;
-        const std::string from_main = main_folder_ + name;
-        return std::ifstream(from_main).good() ? from_main : beside;
+    // The folders a relative name is looked up in, in order: the <path> folders (the latest
+    // first), the main scene file's folder, then `first_beside`'s folder if it is another one
+    // (Mitsuba does not look beside an included file, but scenes split into fragments rely
+    // on it), then the working directory ("").
+    std::vector<std::string> search_folders(const Source &first_beside) const {
+        std::vector<std::string> folders = search_folders_;
+        for (const std::string &folder : {main_folder_, first_beside.folder, std::string()})
+            if (std::find(folders.begin(), folders.end(), folder) == folders.end()) folders.push_back(folder);
+        return folders;
+    }
+
+    static std::string shown(const std::string &folder) { return folder.empty() ? "./" : folder; }
+
+    // <path value="...">: a folder searched for the files the scene names. Relative to the
+    // file holding the element, else found through the folders searched so far.
+    void add_search_folder(const pugi::xml_node &node, const Source &source, const std::string &value) {
+        if (value.empty()) error(node, source, "the 'value' attribute is empty");
+        std::string folder = value[0] == '/' ? value : source.folder + value;
+        if (!is_folder(folder) && value[0] != '/')
+            for (const std::string &base : search_folders(source))
+                if (is_folder(base + value)) {
+                    folder = base + value;
+                    break;
+                }
+        if (!is_folder(folder)) error(node, source, "the folder \"" + value + "\" does not exist (" + folder + ")");
+        if (folder.back() != '/') folder += '/';
+        search_folders_.erase(std::remove(search_folders_.begin(), search_folders_.end(), folder),
+                              search_folders_.end());
+        search_folders_.insert(search_folders_.begin(), folder);
+    }
+
+    // An <include>: beside the including file, else through the search folders.
+    std::string resolve_include(const Source &source, const std::string &name) const {
+        if (name.empty() || name[0] == '/') return name;
+        if (exists(source.folder + name)) return source.folder + name;
+        for (const std::string &folder : search_folders(source))
+            if (exists(folder + name)) return folder + name;
+        return source.folder + name; // reported as missing by read_file
+    }
+
+    // A file a property names (a mesh, a texture). One found nowhere keeps the name beside
+    // the main file, which the builder reports as missing, and the folders searched are a
+    // failure note.
+    std::string resolve_data_file(const pugi::xml_node &node, const Source &source, const std::string &name) {
+        if (name.empty() || name[0] == '/') return name;
+        const std::vector<std::string> folders = search_folders(source);
+        for (const std::string &folder : folders)
+            if (exists(folder + name)) return folder + name;
+        std::string list;
+        for (const std::string &folder : folders) list += (list.empty() ? "" : ", ") + shown(folder);
+        out_.failure_notes.push_back(where(node, source) + ": \"" + name +
+                                     "\" is in none of the folders searched: " + list);
+        return main_folder_ + name;
     }
 
     // ---- attributes and parameters ------------------------------------------------------
@@ -446,6 +504,9 @@ private:
                     for (double x : v) p.append(x);
                     look[key] = located(p, op, source);
                 }
+                if (!look.isMember("up") ||
+                    (look["up"][0].asDouble() == 0 && look["up"][1].asDouble() == 0 && look["up"][2].asDouble() == 0))
+                    look["up"] = located(generated_up(look["origin"], look["target"]), op, source);
                 entry["look_at"] = located(look, op, source);
             } else {
                 error(op, source, "unknown transform operation (translate, rotate, scale, matrix, lookat)");
@@ -453,6 +514,28 @@ private:
             ops.append(located(entry, op, source));
         }
         return located(ops, node, source);
+    }
+
+    // Mitsuba's up vector for a lookat without one (or with a zero one): the first vector of
+    // coordinate_system(view direction), the orthonormal basis of Duff et al. 2017 ("Building
+    // an Orthonormal Basis, Revisited"), so that a camera looking along y still has a frame.
+    static Json::Value generated_up(const Json::Value &origin, const Json::Value &target) {
+        double d[3], length2 = 0;
+        for (int i = 0; i < 3; ++i) {
+            d[i] = target[i].asDouble() - origin[i].asDouble();
+            length2 += d[i] * d[i];
+        }
+        Json::Value up(Json::arrayValue);
+        if (!(length2 > 0)) { // the builder reports origin == target
+            for (int i = 0; i < 3; ++i) up.append(i == 1 ? 1.0 : 0.0);
+            return up;
+        }
+        for (double &c : d) c /= std::sqrt(length2);
+        const double sign = std::copysign(1.0, d[2]);
+        const double a = -1.0 / (sign + d[2]);
+        const double b = d[0] * d[1] * a;
+        for (double c : {1.0 + sign * d[0] * d[0] * a, sign * b, -sign * d[0]}) up.append(c);
+        return up;
     }
 
     // ---- objects ------------------------------------------------------------------------
@@ -517,7 +600,7 @@ private:
         const std::string text = substitute(node, source, "value");
         if (kind == "string") {
             if (std::string(node.attribute("name").value()) == "filename")
-                return located(Json::Value(resolve_data_file(source, text)), node, source);
+                return located(Json::Value(resolve_data_file(node, source, text)), node, source);
             return located(Json::Value(text), node, source);
         }
         if (kind == "boolean") {
@@ -749,23 +832,36 @@ private:
     std::vector<std::string> include_stack_;
     std::map<std::string, Pending> by_id_;
     std::vector<Pending> top_level_;
+    std::vector<std::string> search_folders_;       // of <path>, the latest first, each ending in '/'
     std::set<std::string> referred_to_;             // ids named by a <ref>
     std::vector<Pending> unattached_area_emitters_; // at the top, with an id
 };
 
 } // namespace
 
-XmlScene read_mitsuba_xml(const std::string &path, const XmlOptions &options) {
+namespace {
+
+XmlScene read(const std::string &path, const XmlOptions &options, const std::string *text, const std::string *folder) {
     XmlScene scene;
-    XmlReader(options, scene).read(path, nullptr, nullptr);
+    try {
+        XmlReader(options, scene).read(path, text, folder);
+    } catch (const Error &e) {
+        std::vector<std::string> said = scene.warnings;
+        said.insert(said.end(), scene.failure_notes.begin(), scene.failure_notes.end());
+        throw LoadError(e, said);
+    }
     return scene;
+}
+
+} // namespace
+
+XmlScene read_mitsuba_xml(const std::string &path, const XmlOptions &options) {
+    return read(path, options, nullptr, nullptr);
 }
 
 XmlScene read_mitsuba_xml(const std::string &path, const XmlOptions &options, const std::string *text,
                           const std::string &folder) {
-    XmlScene scene;
-    XmlReader(options, scene).read(path, text, &folder);
-    return scene;
+    return read(path, options, text, &folder);
 }
 
 } // namespace ppm

@@ -40,6 +40,10 @@ struct XmlScene {
     Json::Value root; // the scene in libppm's structure; offsets are SourceFiles positions
     SourceFiles sources;
     std::vector<std::string> warnings; // "file:line:column: what", one per element
+    // Said only if loading then fails, as they may explain the error: files named by the
+    // scene that were found in none of the folders searched (an object that names one may
+    // still be left out, by --lenient).
+    std::vector<std::string> failure_notes;
 };
 
 // Whether `text` looks like an XML document (its first non-blank character is '<').
@@ -48,7 +52,8 @@ bool looks_like_xml(const std::string &text);
 // Reads the file `path`, or `text` under the name `path` with its file names relative to
 // `folder` ("" or ending in '/'). Throws ppm::Error: IO for a missing or unreadable file
 // (the scene or an include), PARSE for malformed XML and everything the reader refuses,
-// located as above.
+// located as above; the error is a LoadError (scenefile/load_error.h) with the warnings and
+// failure notes met before it.
 XmlScene read_mitsuba_xml(const std::string &path, const XmlOptions &options);
 XmlScene read_mitsuba_xml(const std::string &path, const XmlOptions &options, const std::string *text,
                           const std::string &folder);

@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "io/text_file.h"
 #include "scenefile/json_node.h"
+#include "scenefile/load_error.h"
 #include "scenefile/mitsuba_xml.h"
 #include "scenefile/scene_builder.h"
 #include "scenefile/transform.h"
@@ -117,6 +118,7 @@ struct ReadDocument {
     std::unique_ptr<JsonDocument> document;
     std::string folder;
     std::vector<std::string> warnings;
+    std::vector<std::string> failure_notes; // said only if loading fails
 };
 
 ReadDocument read_document(const SceneFileSource &source) {
@@ -134,6 +136,7 @@ ReadDocument read_document(const SceneFileSource &source) {
                                      : read_mitsuba_xml(source.path, options);
         read.document = std::make_unique<JsonDocument>(std::move(scene.root), std::move(scene.sources));
         read.warnings = std::move(scene.warnings);
+        read.failure_notes = std::move(scene.failure_notes);
         return read;
     }
     if (!source.defines.empty())
@@ -148,9 +151,20 @@ ReadDocument read_document(const SceneFileSource &source) {
 
 SceneFile::SceneFile(ppm_context context, const SceneFileSource &source) {
     const ReadDocument read = read_document(source);
-    const JsonDocument &document = *read.document;
     warnings_ = read.warnings;
-    const std::string &path = source.path;
+    try {
+        build(context, source.path, *read.document, read.folder);
+    } catch (const LoadError &) {
+        throw;
+    } catch (const Error &e) {
+        std::vector<std::string> said = warnings_;
+        said.insert(said.end(), read.failure_notes.begin(), read.failure_notes.end());
+        throw LoadError(e, said);
+    }
+}
+
+void SceneFile::build(ppm_context context, const std::string &path, const JsonDocument &document,
+                      const std::string &folder) {
     const JsonNode root(document, document.root(), "");
     root.allow_only({"version", "integrator", "sensor", "bsdfs", "emitters", "shapes"});
     if (root.has("version")) root.at("version").integer(1, 1);
@@ -166,7 +180,7 @@ SceneFile::SceneFile(ppm_context context, const SceneFileSource &source) {
     const ppm_status created = ppm_scene_create(context, &scene_);
     if (created != PPM_OK) fail(created, ppm_last_error_message());
     try {
-        SceneBuilder builder(scene_, read.folder);
+        SceneBuilder builder(scene_, folder);
         if (root.has("bsdfs")) builder.add_bsdfs(root.at("bsdfs"));
         if (root.has("emitters")) builder.add_emitters(root.at("emitters"));
         builder.add_shapes(root.at("shapes"));
@@ -174,6 +188,7 @@ SceneFile::SceneFile(ppm_context context, const SceneFileSource &source) {
         if (committed != PPM_OK) fail(committed, path + ": " + ppm_last_error_message());
     } catch (...) {
         ppm_scene_release(scene_);
+        scene_ = nullptr;
         throw;
     }
 }

@@ -16,6 +16,8 @@
 
 namespace ppm {
 
+class JsonDocument;
+
 // Where a scene file's text comes from and how to read it.
 struct SceneFileSource {
     enum class Format { Detect, Json, Xml };
@@ -32,7 +34,8 @@ class SceneFile : public RefCounted {
 public:
     // Throws ppm::Error: IO for a missing file (the scene or one it names), PARSE for
     // anything wrong inside it, with "file:line:column: key.path: what", INVALID_ARGUMENT
-    // for parameters given for a JSON file.
+    // for parameters given for a JSON file. Once the file is read, the error is a LoadError
+    // (scenefile/load_error.h) carrying the warnings met before it.
     SceneFile(ppm_context context, const SceneFileSource &source);
     ~SceneFile() override;
 
@@ -46,6 +49,10 @@ public:
     double time_budget() const { return time_; }
 
 private:
+    // The scene, camera and settings from the document; `folder`: what its file names are
+    // relative to.
+    void build(ppm_context context, const std::string &path, const JsonDocument &document, const std::string &folder);
+
     ppm_scene scene_ = nullptr; // keeps the context alive
     ppm_camera camera_{};
     RenderSettings settings_;

@@ -381,6 +381,48 @@ static void spot_light_beam_and_cutoff(void **state) {
     ppm_renderer_release(r);
 }
 
+/* A spot wider than a hemisphere (Mitsuba accepts cutoffs up to 180 degrees) pointing away
+ * from the plane: the plane sees it from angles 180 - a to its axis, a the angle from
+ * straight down, so with beam 150 and cutoff 180 the falloff is min(1, a / 30 degrees). */
+static void spot_light_wider_than_a_hemisphere(void **state) {
+    scene_fixture *f = *state;
+    build_plane(f->scene);
+    const double position[3] = {0, 0, kHeight}, target[3] = {0, 0, 2 * kHeight}, intensity[3] = {3, 3, 3};
+    assert_ppm_ok(ppm_scene_add_spot_light(f->scene, position, target, intensity, 180, 150, NULL));
+    assert_ppm_ok(ppm_scene_commit(f->scene));
+    const double origin[3] = {0, 0, kCameraHeight}, target_cam[3] = {0, 0, 0};
+    ppm_renderer r = make_renderer(f->scene, origin, target_cam, kFov, 32, 32);
+    assert_ppm_ok(ppm_renderer_set_int(r, "photons_per_pass", 1000));
+    image im = render(r, 64);
+    double sum = 0, peak = 0;
+    double expected[32 * 32];
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) {
+            double total = 0;
+            for (int j = 0; j < 8; ++j)
+                for (int i = 0; i < 8; ++i) {
+                    double px, py;
+                    plane_point_at(x + (i + 0.5) / 8, y + (j + 0.5) / 8, 32, &px, &py);
+                    const double from_down = atan(sqrt(px * px + py * py) / kHeight) * 180 / kPi;
+                    total += point_light_radiance(px, py, 3.0) * fmin(1.0, from_down / 30);
+                }
+            expected[y * 32 + x] = total / 64;
+            peak = fmax(peak, expected[y * 32 + x]);
+        }
+    for (int i = 0; i < 32 * 32; ++i) {
+        const double e = (im.rgb[3 * i] - expected[i]) / peak;
+        sum += e * e;
+    }
+    const double rms = sqrt(sum / (32 * 32));
+    print_message("spot light wider than a hemisphere: rms error %.2e of the peak\n", rms);
+    assert_true(rms < 0.005);
+    /* Straight below the light the spot is dim, its axis pointing away: the pixel there,
+     * 0 to 9 degrees from straight down, gets about 0.15 of a point light's radiance. */
+    assert_true(im.rgb[3 * (16 * 32 + 16)] < 0.3 * pixel_radiance(16, 16, 32, 3.0, 0, 0));
+    free(im.rgb);
+    ppm_renderer_release(r);
+}
+
 /* A point light and a spot of different powers: the photon estimate (which picks lights
  * by power) must agree with the shadow-ray estimate (which samples every light). */
 static void photons_agree_with_shadow_rays_for_two_lights(void **state) {
@@ -679,6 +721,8 @@ int main(void) {
         cmocka_unit_test_setup_teardown(point_light_on_plane_by_photons_converges_pppm, scene_fixture_setup,
                                         scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(spot_light_beam_and_cutoff, scene_fixture_setup, scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(spot_light_wider_than_a_hemisphere, scene_fixture_setup,
+                                        scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(disk_and_mesh_lights_on_plane, scene_fixture_setup, scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(photons_agree_with_shadow_rays_for_two_lights, scene_fixture_setup,
                                         scene_fixture_teardown),

@@ -173,10 +173,13 @@ void ply_damage_is_a_located_error(void **) {
     assert_parse_error([&] { parse_ply(bad_index, "b.ply"); }, {"b.ply: byte", "vertex index 42 is out of range"});
 }
 
-// A serialized mesh stream: header, then the zlib-compressed body.
-std::string serialized_mesh(std::uint16_t version, bool doubles, std::uint32_t extra_flags, const char *name) {
+// A serialized mesh stream: header, then the zlib-compressed body. `flag_precision` false
+// leaves the single-precision bit out, as some writers do.
+std::string serialized_mesh(std::uint16_t version, bool doubles, std::uint32_t extra_flags, const char *name,
+                            bool flag_precision = true) {
     std::string body;
-    const std::uint32_t flags = 0x0001 | 0x0002 | (doubles ? 0x2000 : 0x1000) | extra_flags;
+    const std::uint32_t precision = doubles ? 0x2000 : flag_precision ? 0x1000 : 0;
+    const std::uint32_t flags = 0x0001 | 0x0002 | precision | extra_flags;
     put<std::uint32_t>(body, flags, false);
     if (version == 4) body.append(name, std::strlen(name) + 1);
     put<std::uint64_t>(body, 4, false);
@@ -238,6 +241,17 @@ void serialized_meshes_read_in_both_versions_and_precisions(void **) {
         }
 }
 
+// Mitsuba's loader reads doubles exactly when 0x2000 is set and ignores the bits it does not
+// know; public files carry flags such as 259 (0x0100 | normals | texture coordinates).
+void serialized_flags_are_read_as_mitsuba_reads_them(void **) {
+    const std::string file = serialized_file(
+        4, {serialized_mesh(4, false, 0x0100, "unflagged", false), serialized_mesh(4, true, 0x0100 | 0x1000, "both")});
+    const SerializedMesh single = parse_serialized(file, "m.serialized", 0);
+    assert_unit_square(single.mesh, true, true);
+    assert_false(single.face_normals || single.had_colours);
+    assert_unit_square(parse_serialized(file, "m.serialized", 1).mesh, true, true);
+}
+
 void serialized_damage_is_a_located_error(void **) {
     const std::string file = serialized_file(4, {serialized_mesh(4, false, 0, "only")});
     assert_parse_error([&] { parse_serialized(file, "m.serialized", 1); },
@@ -287,6 +301,7 @@ int main() {
         cmocka_unit_test(binary_ply_reads_the_same_in_both_byte_orders_and_reports_what_it_skips),
         cmocka_unit_test(ply_damage_is_a_located_error),
         cmocka_unit_test(serialized_meshes_read_in_both_versions_and_precisions),
+        cmocka_unit_test(serialized_flags_are_read_as_mitsuba_reads_them),
         cmocka_unit_test(serialized_damage_is_a_located_error),
         cmocka_unit_test(files_that_do_not_exist_are_io_errors),
     };

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <string>
 
 using namespace ppm;
@@ -41,6 +42,7 @@ template <class Load> std::string error_of(Load &&load, ppm_status expected = PP
 void assert_contains(const std::string &text, const char *fragment) {
     if (text.find(fragment) == std::string::npos) fail_msg("'%s' lacks '%s'", text.c_str(), fragment);
 }
+void assert_contains(const std::string &text, const std::string &fragment) { assert_contains(text, fragment.c_str()); }
 
 const char *kCornell = R"(<scene version="3.0.0">
     <default name="spp" value="16"/>
@@ -340,6 +342,80 @@ void an_area_emitter_at_the_top_is_the_emission_of_the_shapes_that_refer_to_it(v
     assert_int_equal(skipped.warnings.size(), 1);
 }
 
+// Mitsuba's file resolver: <path> folders first (the latest first), then the scene's folder;
+// an included file's <path> serves its own includes only; the folders are said for a file
+// found in none of them.
+void path_elements_add_folders_searched_as_mitsuba_searches_them(void **) {
+    const std::string root = folder;
+    for (const char *sub : {"assets", "later", "fragments", "fragments/more"})
+        std::filesystem::create_directories(root + "/paths/" + sub);
+    write("paths/assets/mesh.ply", "");
+    write("paths/assets/both.ply", "");
+    write("paths/later/both.ply", "");
+    write("paths/beside.ply", "");
+    write("paths/assets/beside.ply", "");
+    write("paths/fragments/more/deep.xml", "<scene version=\"3.0.0\"><shape type=\"sphere\"/></scene>");
+    write("paths/fragments/part.xml", "<scene version=\"3.0.0\"><path value=\"more\"/><include filename=\"deep.xml\"/>"
+                                      "<shape type=\"ply\"><string name=\"filename\" value=\"deep.xml\"/></shape>"
+                                      "</scene>");
+    const auto shape = [](const char *file) {
+        return std::string("<shape type=\"ply\"><string name=\"filename\" value=\"") + file + "\"/></shape>\n";
+    };
+    const std::string scene_path =
+        write("paths/scene.xml", "<scene version=\"3.0.0\">\n<path value=\"assets\"/>\n<path value=\"later\"/>\n" +
+                                     shape("mesh.ply") + shape("both.ply") + shape("beside.ply") +
+                                     "<include filename=\"fragments/part.xml\"/>\n</scene>");
+    const XmlScene scene = read_mitsuba_xml(scene_path, {});
+    const Json::Value &shapes = scene.root["shapes"];
+    assert_int_equal(shapes.size(), 5);
+    assert_string_equal(shapes[0]["filename"].asCString(), (root + "/paths/assets/mesh.ply").c_str());
+    assert_string_equal(shapes[1]["filename"].asCString(), (root + "/paths/later/both.ply").c_str());
+    assert_string_equal(shapes[2]["filename"].asCString(), (root + "/paths/assets/beside.ply").c_str());
+    // The include found deep.xml through its own <path>; the property naming deep.xml did not.
+    assert_string_equal(shapes[3]["type"].asCString(), "sphere");
+    assert_string_equal(shapes[4]["filename"].asCString(), (root + "/paths/deep.xml").c_str());
+    assert_int_equal(scene.warnings.size(), 0);
+    assert_int_equal(scene.failure_notes.size(), 1);
+    assert_contains(scene.failure_notes[0], "part.xml:1:");
+    assert_contains(scene.failure_notes[0], "\"deep.xml\" is in none of the folders searched: " + root +
+                                                "/paths/later/, " + root + "/paths/assets/, " + root + "/paths/, " +
+                                                root + "/paths/fragments/, ./");
+
+    assert_contains(error_of([&] {
+                        read_mitsuba_xml(write("paths/bad.xml", "<scene version=\"3.0.0\">\n <path value=\"nope\"/>"
+                                                                "</scene>"),
+                                         {});
+                    }),
+                    "bad.xml:2:2: <path>: the folder \"nope\" does not exist");
+    std::filesystem::remove_all(root + "/paths");
+}
+
+// Mitsuba gives a lookat without an up vector (or a zero one) the first vector of
+// coordinate_system(view direction), so a camera looking straight down y has a frame.
+void a_lookat_without_up_gets_mitsubas_frame(void **) {
+    const auto up_of = [](const char *lookat) {
+        const XmlScene scene = read_mitsuba_xml(write("up.xml", std::string("<scene version=\"3.0.0\"><sensor "
+                                                                            "type=\"perspective\"><transform "
+                                                                            "name=\"to_world\">") +
+                                                                    lookat + "</transform></sensor></scene>"),
+                                                {});
+        return scene.root["sensor"]["to_world"][0]["look_at"]["up"];
+    };
+    // Looking along -y: n = (0, -1, 0), sign = 1, a = -1, b = 0, so up = (1, 0, 0).
+    Json::Value up = up_of("<lookat origin=\"0, 5, 0\" target=\"0, 0, 0\"/>");
+    assert_close(up[0].asDouble(), 1, 0);
+    assert_close(up[1].asDouble(), 0, 0);
+    assert_close(up[2].asDouble(), 0, 0);
+    // n = (0.6, 0, -0.8): sign = -1, a = -1 / (-1.8), b = 0, up = (1 - 0.36 a, 0, 0.6).
+    up = up_of("<lookat origin=\"0, 0, 0\" target=\"3, 0, -4\" up=\"0, 0, 0\"/>");
+    assert_close(up[0].asDouble(), 1 - 0.36 / 1.8, 1e-15);
+    assert_close(up[1].asDouble(), 0, 0);
+    assert_close(up[2].asDouble(), 0.6, 1e-15);
+    // A given up vector is kept.
+    up = up_of("<lookat origin=\"0, 0, 0\" target=\"0, 0, 1\" up=\"0, 2, 0\"/>");
+    assert_close(up[1].asDouble(), 2, 0);
+}
+
 int setup(void **) { return test_make_folder(folder, sizeof folder, "ppm-xml-"); }
 int teardown(void **) {
     test_remove_folder(folder);
@@ -357,6 +433,8 @@ int main() {
         cmocka_unit_test(malformed_or_inconsistent_files_are_located_errors),
         cmocka_unit_test(blendbsdf_and_mask_nest_their_bsdfs),
         cmocka_unit_test(an_area_emitter_at_the_top_is_the_emission_of_the_shapes_that_refer_to_it),
+        cmocka_unit_test(path_elements_add_folders_searched_as_mitsuba_searches_them),
+        cmocka_unit_test(a_lookat_without_up_gets_mitsubas_frame),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

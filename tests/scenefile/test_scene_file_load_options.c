@@ -159,6 +159,10 @@ static void test_lenient_substitutes_with_warnings_and_strict_names_the_element(
     assert_int_equal(ppm_scene_file_load(f->context, write_file(f, "rough.xml", rough_xml), &file), PPM_ERROR_PARSE);
     assert_null(file);
     assert_message_has("rough.xml:5:3: emitters[0].type");
+    /* The failure also says where the sky's file was looked for. */
+    assert_int_equal(f->warnings, 1);
+    if (!strstr(f->last_warning, "\"sky\" is in none of the folders searched")) fail_msg("'%s'", f->last_warning);
+    f->warnings = 0;
 
     ppm_scene_file_options options;
     ppm_scene_file_options_init(&options);
@@ -229,6 +233,22 @@ static void test_misspellings_get_a_suggestion(void **state) {
     assert_message_has(
         "bsdfs.grey.reflectanse: diffuse material has no parameter 'reflectanse' (did you mean 'reflectance'?)");
     assert_null(file);
+}
+
+/* A file that fails to load still gives the warnings met before the error: here the one
+ * naming the folders in which a mesh was looked for. */
+static void test_warnings_are_given_when_loading_fails(void **state) {
+    fixture *f = *state;
+    const char *xml = "<scene version=\"3.0.0\">\n"
+                      "  <shape type=\"ply\"><string name=\"filename\" value=\"missing.ply\"/></shape>\n"
+                      "</scene>\n";
+    ppm_scene_file file = NULL;
+    assert_int_equal(ppm_scene_file_load(f->context, write_file(f, "missing.xml", xml), &file), PPM_ERROR_IO);
+    assert_null(file);
+    assert_message_has("missing.ply");
+    assert_int_equal(f->warnings, 1);
+    if (!strstr(f->last_warning, "missing.xml:2:") || !strstr(f->last_warning, "\"missing.ply\" is in none of"))
+        fail_msg("warning '%s'", f->last_warning);
 }
 
 static void test_bad_options_are_refused(void **state) {
@@ -360,6 +380,7 @@ int main(void) {
         cmocka_unit_test_setup_teardown(test_lenient_substitutes_with_warnings_and_strict_names_the_element, setup,
                                         teardown),
         cmocka_unit_test_setup_teardown(test_scene_from_text_resolves_names_against_the_folder, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_warnings_are_given_when_loading_fails, setup, teardown),
         cmocka_unit_test_setup_teardown(test_bad_options_are_refused, setup, teardown),
         cmocka_unit_test_setup_teardown(test_misspellings_get_a_suggestion, setup, teardown),
         cmocka_unit_test_setup_teardown(test_xml_file_names_are_relative_to_the_scene, setup, teardown),

@@ -26,6 +26,8 @@ const char *const render_description = "Renderer speed: eye pass time, photon pa
 const char *const render_footer = "Times the renderer's passes: eye pass seconds, photon paths per second and peak\n"
                                   "memory, per scene, hit-point search and photons per pass; build_s is the part of\n"
                                   "eye_s spent building the hit-point search. Figures are medians over the passes.\n"
+                                  "In the bidirectional modes (vcm, bpt, vm) a pass is one estimate: eye_s is the\n"
+                                  "whole pass, photon_s 0, and Mpaths/s counts light subpaths per second of the pass.\n"
                                   "Exit status: 0 ok, 1 usage error, 2 runtime error.";
 
 double peak_rss_mib() {
@@ -64,6 +66,9 @@ CLI::App *add_render_command(CLI::App &app, RenderOptions &o) {
     };
     list("--scenes", o.scenes, {"smallppm", "teapot-glass"}, "smallppm,teapot-glass (default both)");
     list("--search", o.searches, {"grid", "kdtree"}, "grid,kdtree (default both)");
+    command->add_option("--mode", o.mode, "sppm, ppm, pppm, vcm, bpt or vm (default sppm)")
+        ->check(CLI::IsMember({"sppm", "ppm", "pppm", "vcm", "bpt", "vm"}).description(""))
+        ->type_name("MODE");
     command
         ->add_option("--photons", o.photon_counts,
                      "photons per pass, in increasing order to see whether\n"
@@ -97,8 +102,8 @@ int run_render_command(const RenderOptions &options) {
         ppm_tools::Context context;
         check_with_status(ppm_context_create(context.out()), "ppm_context_create");
         check_with_status(ppm_context_set_int(context, "threads", o.threads), "ppm_context_set_int");
-        std::printf("render benchmark: %d x %d, %d passes per configuration, threads %d (0 = all)\n", o.width, o.height,
-                    o.passes, o.threads);
+        std::printf("render benchmark: %s, %d x %d, %d passes per configuration, threads %d (0 = all)\n",
+                    o.mode.c_str(), o.width, o.height, o.passes, o.threads);
         std::printf("%-13s %-7s %10s %10s %12s %14s %10s %10s\n", "scene", "search", "photons", "eye_s", "photon_s",
                     "Mpaths/s", "peak_MiB", "build_s");
         for (const std::string &name : o.scenes) {
@@ -108,6 +113,7 @@ int run_render_command(const RenderOptions &options) {
                 for (const std::string &search : o.searches) {
                     ppm_tools::Renderer r;
                     check_with_status(ppm_renderer_create(bs.scene, &bs.camera, r.out()), "ppm_renderer_create");
+                    check_with_status(ppm_renderer_set_string(r, "mode", o.mode.c_str()), "mode");
                     check_with_status(ppm_renderer_set_string(r, "hit_point_search", search.c_str()),
                                       "hit_point_search");
                     check_with_status(ppm_renderer_set_int(r, "photons_per_pass", photons), "photons_per_pass");
@@ -122,7 +128,8 @@ int run_render_command(const RenderOptions &options) {
                         eye.push_back(e);
                         photon.push_back(ph);
                     }
-                    const double rate = photons / median(photon) / 1e6;
+                    const double path_seconds = median(photon) > 0 ? median(photon) : median(eye);
+                    const double rate = photons / path_seconds / 1e6;
                     std::printf("%-13s %-7s %10ld %10.3f %12.3f %14.3f %10.0f %10.3f\n", name.c_str(), search.c_str(),
                                 photons, median(eye), median(photon), rate, peak_rss_mib(), median(build));
                     std::fflush(stdout);

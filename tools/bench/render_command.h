@@ -14,6 +14,7 @@ struct RenderOptions {
     std::vector<std::string> scenes{"smallppm", "teapot-glass"};
     std::vector<std::string> searches{"grid", "kdtree"};
     std::vector<long> photon_counts{100000, 1000000};
+    std::string mode = "sppm"; // the renderer's mode: eye and photon passes are timed apart in the photon modes
     int width = 1024, height = 768;
     int passes = 4;
     int threads = 0;
