@@ -251,6 +251,11 @@ PPM_API ppm_status ppm_scene_add_triangle_mesh(ppm_scene scene, const double *po
                                                const uint32_t *indices, size_t triangle_count, const double *normals,
                                                const double *uvs, uint32_t *out_geom_id);
 
+/* The three mesh files below: a mesh that comes without vertex normals shades smoothly with
+ * the vertex normals Mitsuba 3 computes for it (each triangle's unit normal added to its
+ * corners, weighted by the corner's angle, from the placed positions at every commit), as
+ * Mitsuba's mesh plugins do; ppm_scene_set_mesh_face_normals makes it flat. */
+
 /* Reads a Wavefront OBJ file (v, vn, vt and f statements; all objects become one triangle
  * mesh, polygons are fanned from their first corner, per-vertex normals and texture
  * coordinates are kept when every face has them; a `vt u v` becomes uv (u, 1 - v): OBJ's
@@ -704,7 +709,12 @@ typedef struct ppm_camera_v2 {
      * crop_x1 - crop_x0 by crop_y1 - crop_y0 pixels. 0 <= x0 < x1 <= width and
      * 0 <= y0 < y1 <= height; all four 0 (default): the whole image. */
     uint32_t crop_x0, crop_y0, crop_x1, crop_y1;
-    uint64_t reserved[6]; /* room for fields to come without changing size; 0 */
+    /* Principal point offset (Mitsuba's perspective principal_point_offset_x / _y), a
+     * shifted lens: pixel (x, y) sees what pixel (x + offset_x width, y + offset_y height)
+     * of the centred camera sees (x to the right, y down the image); fractions of the film's
+     * size, finite, default 0 (centred). */
+    double principal_point_offset_x, principal_point_offset_y;
+    uint64_t reserved[4]; /* room for fields to come without changing size; 0 */
 } ppm_camera_v2;
 
 /* Sets *camera to the defaults above, `size` to sizeof(ppm_camera_v2) and every other byte

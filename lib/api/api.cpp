@@ -32,6 +32,14 @@ namespace {
 using namespace ppm::api;
 using ppm::invalid_argument;
 
+// A mesh read from a file. One without normals gets Mitsuba's computed vertex normals (its
+// mesh plugins do so unless face_normals is set), so a file shades as in Mitsuba.
+std::unique_ptr<ppm::MeshGeometry> mesh_from_file(ppm::MeshData mesh) {
+    auto geometry = std::make_unique<ppm::MeshGeometry>(std::move(mesh));
+    geometry->compute_vertex_normals();
+    return geometry;
+}
+
 // The patches of `control_points` (ppm_scene_add_bezier_patches' layout), checked.
 std::vector<ppm::BezierPatch> read_patches(const double *control_points, size_t patch_count) {
     require(control_points, "control_points");
@@ -379,7 +387,7 @@ ppm_status ppm_scene_add_triangle_mesh(ppm_scene scene, const double *positions,
 ppm_status ppm_scene_load_obj(ppm_scene scene, const char *path, uint32_t *out_geom_id) {
     return add_geometry(scene, out_geom_id, [&] {
         require(path, "path");
-        return std::make_unique<ppm::MeshGeometry>(ppm::read_obj_file(path));
+        return mesh_from_file(ppm::read_obj_file(path));
     });
 }
 
@@ -388,7 +396,7 @@ ppm_status ppm_scene_load_ply(ppm_scene scene, const char *path, uint32_t *out_g
         require(path, "path");
         ppm::PlyMesh ply = ppm::read_ply_file(path);
         for (const std::string &warning : ply.warnings) scene->context().warn(warning);
-        return std::make_unique<ppm::MeshGeometry>(std::move(ply.mesh));
+        return mesh_from_file(std::move(ply.mesh));
     });
 }
 
@@ -399,7 +407,9 @@ ppm_status ppm_scene_load_serialized(ppm_scene scene, const char *path, uint32_t
         if (serialized.had_colours)
             scene->context().warn(std::string(path) + ": mesh " + std::to_string(shape_index) +
                                   ": vertex colours are ignored");
-        return std::make_unique<ppm::MeshGeometry>(std::move(serialized.mesh));
+        std::unique_ptr<ppm::MeshGeometry> mesh = mesh_from_file(std::move(serialized.mesh));
+        if (serialized.face_normals) mesh->drop_vertex_normals();
+        return mesh;
     });
 }
 

@@ -80,6 +80,8 @@ ppm::CameraSettings camera_settings(const ppm_camera_v2 *camera) {
     settings.crop_y0 = crop_coordinate(known.crop_y0, "crop_y0");
     settings.crop_x1 = crop_coordinate(known.crop_x1, "crop_x1");
     settings.crop_y1 = crop_coordinate(known.crop_y1, "crop_y1");
+    settings.principal_point_offset_x = known.principal_point_offset_x;
+    settings.principal_point_offset_y = known.principal_point_offset_y;
     return settings;
 }
 
@@ -103,6 +105,8 @@ void write_camera(const ppm::CameraSettings &settings, ppm_camera_v2 *out) {
     camera.crop_y0 = static_cast<uint32_t>(settings.crop_y0);
     camera.crop_x1 = static_cast<uint32_t>(settings.crop_x1);
     camera.crop_y1 = static_cast<uint32_t>(settings.crop_y1);
+    camera.principal_point_offset_x = settings.principal_point_offset_x;
+    camera.principal_point_offset_y = settings.principal_point_offset_y;
     std::memcpy(out, &camera, std::min(size, sizeof camera));
     if (size > sizeof camera)
         std::memset(reinterpret_cast<unsigned char *>(out) + sizeof camera, 0, size - sizeof camera);

@@ -148,10 +148,28 @@ ppm_status ppm_scene_file_get_scene(ppm_scene_file file, ppm_scene *out_scene) {
     });
 }
 
+// The first camera struct has no principal point offset: a file's camera with one is refused
+// there rather than returned centred.
 ppm_status ppm_scene_file_get_camera(ppm_scene_file file, ppm_camera *out_camera) {
     return file_call(file, [&](ppm::SceneFile &f) {
         require(out_camera, "out_camera");
-        *out_camera = f.camera();
+        const ppm_camera_v2 &c = f.camera();
+        if (c.principal_point_offset_x != 0 || c.principal_point_offset_y != 0)
+            ppm::fail(PPM_ERROR_UNSUPPORTED, "the scene's camera has a principal point offset, which ppm_camera "
+                                             "cannot hold: use ppm_scene_file_get_camera_v2");
+        ppm_camera camera{};
+        for (int i = 0; i < 3; ++i) {
+            camera.origin[i] = c.origin[i];
+            camera.target[i] = c.target[i];
+            camera.up[i] = c.up[i];
+        }
+        camera.fov = c.fov;
+        camera.width = c.width;
+        camera.height = c.height;
+        camera.aperture_radius = c.aperture_radius;
+        camera.focus_distance = c.focus_distance;
+        camera.near_clip = c.near_clip;
+        *out_camera = camera;
     });
 }
 
@@ -163,7 +181,7 @@ ppm_status ppm_scene_file_create_renderer(ppm_scene_file file, ppm_renderer *out
     return file_call(file, [&](ppm::SceneFile &f) {
         require(out_renderer, "out_renderer");
         ppm_renderer renderer = nullptr;
-        if (const ppm_status status = ppm_renderer_create(f.scene(), &f.camera(), &renderer); status != PPM_OK)
+        if (const ppm_status status = ppm_renderer_create_v2(f.scene(), &f.camera(), &renderer); status != PPM_OK)
             ppm::fail(status, ppm_last_error_message());
         renderer->settings() = f.settings();
         *out_renderer = renderer;

@@ -67,9 +67,14 @@ Camera::Camera(const CameraSettings &s) {
         width_ = s.crop_x1 - s.crop_x0;
         height_ = s.crop_y1 - s.crop_y0;
     }
-    // The cropped image's top-left corner: the full film's, moved by the crop offset.
-    x_left_ = tan_half_fov_ - crop_x0_ * x_scale_;
-    y_top_ = tan_half_fov_ / aspect_ - crop_y0_ * y_scale_;
+    for (const double offset : {s.principal_point_offset_x, s.principal_point_offset_y})
+        if (!(std::fabs(offset) <= 1048576.0))
+            invalid_argument("camera principal point offset must be finite and within +-2^20 film sizes, got " +
+                             format_number(offset));
+    // The cropped image's top-left corner: the full film's, moved by the crop offset and by
+    // the principal point offset (in pixels of the full film).
+    x_left_ = tan_half_fov_ - (crop_x0_ + s.principal_point_offset_x * s.width) * x_scale_;
+    y_top_ = tan_half_fov_ / aspect_ - (crop_y0_ + s.principal_point_offset_y * s.height) * y_scale_;
     aperture_radius_ = s.aperture_radius;
     focus_distance_ = s.focus_distance;
     if (!(s.near_clip >= 0 && std::isfinite(s.near_clip)))

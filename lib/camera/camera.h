@@ -25,7 +25,11 @@
 //
 // Near clip (Mitsuba's `near_clip`): rays start where they cross the plane local z =
 // near_clip (tnear = near_clip / cos of the angle to the view axis). Mitsuba's default is
-// 0.01; ours is 0, rays start at the lens. There is no far clip or principal point offset.
+// 0.01; ours is 0, rays start at the lens. There is no far clip.
+//
+// Principal point offset (Mitsuba's principal_point_offset_x / _y): film position (x, y) is
+// imaged as the centred camera images (x + ox width, y + oy height), so the image window
+// slides over the plane z = 1 by ox and oy of its own size, keeping its size.
 //
 // Crop window (Mitsuba's film crop_offset / crop_size): the pixels [crop_x0, crop_x1) x
 // [crop_y0, crop_y1) of the width x height film, projected exactly as in the full image,
@@ -50,6 +54,9 @@ struct CameraSettings {
     double near_clip = 0;       // scene units along the view axis, >= 0
     // Crop window in pixels, 0 <= x0 < x1 <= width and 0 <= y0 < y1 <= height; all 0: none.
     int crop_x0 = 0, crop_y0 = 0, crop_x1 = 0, crop_y1 = 0;
+    // Fractions of the film's width and height, finite.
+    double principal_point_offset_x = 0, principal_point_offset_y = 0;
+    bool offset() const { return principal_point_offset_x != 0 || principal_point_offset_y != 0; }
     bool cropped() const { return crop_x0 != 0 || crop_y0 != 0 || crop_x1 != 0 || crop_y1 != 0; }
 };
 
@@ -63,7 +70,8 @@ class Camera {
 public:
     // Throws ppm::Error (invalid argument) naming the bad setting: non-finite values, fov
     // outside (0, 180), a non-positive image size, origin == target, up along the view
-    // direction, a negative aperture, or a thin lens without a positive focus distance.
+    // direction, a negative aperture, a thin lens without a positive focus distance, or a
+    // principal point offset that is not finite or beyond 2^20.
     explicit Camera(const CameraSettings &settings);
 
     // Primary ray through film position (x, y) in pixel units (see above; pass pixel + jitter).

@@ -73,15 +73,22 @@ void DensityEstimator::deposit(const PhotonHit &photon) {
         const GatherPoint &g = gather_[index];
         // A photon arriving from behind the visible point's surface (the far side of a thin
         // wall, the inside of a closed object) does not light it.
-        if (GatherPoint::dot(g.normal, photon.direction) >= 0) return;
+        const double cos_geometric = -GatherPoint::dot(g.normal, photon.direction);
+        if (!(cos_geometric > 0)) return;
+        // Flux per geometric area where the photon landed, read with the shading normal's
+        // cosine where the visible point has one (shading/shading_normals.h).
+        const double cos_shading = -GatherPoint::dot(g.shading_normal, photon.direction);
+        const double shading_factor = GatherPoint::shading_is_geometric(g) ? 1.0
+                                      : photon.cos_landing > 0             ? std::fabs(cos_shading) / photon.cos_landing
+                                                                           : 0.0;
         if (g.lobe.needs_full_eval()) {
             // A rough lobe: the whole BSDF at the photon's direction, wi = -direction.
             const FullLobe &f = full_[index];
-            flux_->add(index,
-                       photon.flux * g.lobe.weight() * f.bsdf.eval(f.wo_local, f.frame.to_local(-photon.direction)));
+            flux_->add(index, photon.flux * g.lobe.weight() *
+                                  f.bsdf.eval(f.wo_local, f.frame.to_local(-photon.direction)) * shading_factor);
             return;
         }
-        flux_->add(index, photon.flux * g.lobe.at(-GatherPoint::dot(g.shading_normal, photon.direction)));
+        flux_->add(index, photon.flux * g.lobe.at(cos_shading) * shading_factor);
     };
     if (search_ == RenderSettings::Search::Grid)
         grid_.query(photon.position, visit);

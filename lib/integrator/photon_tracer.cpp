@@ -5,6 +5,7 @@
 
 #include "scene/scene.h"
 #include "scene/spawn.h"
+#include "shading/shading_normals.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -69,11 +70,11 @@ void PhotonTracer::trace_photon(const RenderScene &scene, const RenderSettings &
         // Depth 0 is direct light, which the eye pass estimates by itself (unless told not to).
         if ((depth > 0 || !settings.direct_lighting) && sp.bsdf.gathers(settings.glossy_gather_alpha) &&
             estimator.may_gather(sp.p))
-            hits.push_back({sp.p, direction, flux});
+            hits.push_back({sp.p, direction, flux, static_cast<float>(std::fabs(dot(direction, sp.ng)))});
         const double u_lobe = rng.uniform(), v1 = rng.uniform(), v2 = rng.uniform();
         const BsdfSample s = sp.bsdf.sample(sp.wo_local, u_lobe, v1, v2, TransportMode::Importance);
         if (!s.valid()) return;
-        const Rgb scattered = flux * s.weight;
+        const Rgb scattered = flux * s.weight * light_path_shading_correction(sp, sp.wo_local, s.wi);
         // Russian roulette on the throughput's drop (pbrt-v3 SPPM): paths that lose power
         // end more often and survivors carry the difference, so the estimate stays unbiased.
         const double survive = std::min(1.0, scattered.max() / flux.max());

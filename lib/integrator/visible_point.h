@@ -32,6 +32,10 @@ struct alignas(64) GatherPoint {
     FixedWoLobe lobe;        // the camera path's weight times the BSDF at this wo
 
     static double dot(const float n[3], const Vec3 &d) { return n[0] * d.x + n[1] * d.y + n[2] * d.z; }
+    static bool shading_is_geometric(const GatherPoint &g) {
+        return g.normal[0] == g.shading_normal[0] && g.normal[1] == g.shading_normal[1] &&
+               g.normal[2] == g.shading_normal[2];
+    }
 };
 static_assert(sizeof(GatherPoint) == 64, "a gather point fills one cache line");
 
@@ -51,6 +55,7 @@ struct PhotonHit {
     Vec3 position;
     Vec3 direction; // of travel, unit
     Rgb flux;
+    float cos_landing = 1; // |direction . geometric normal| where the photon landed
 };
 
 } // namespace ppm

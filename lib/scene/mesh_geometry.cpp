@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "scene/mesh_geometry.h"
 
+#include "geometry/vertex_normals.h"
+
 #include <cfloat>
 
 namespace ppm {
@@ -67,6 +69,7 @@ Box3 MeshGeometry::prepare(const Affine &transform) {
         const double len = length(n);
         if (len > 0) n = n / len;
     }
+    if (computes_vertex_normals_) world_->normals = angle_weighted_vertex_normals(*world_);
     return bounds;
 }
 

@@ -25,9 +25,16 @@ public:
     // Interpolated vertex uvs when the mesh has them, else the barycentric (u, v).
     void texture_coordinates(const ppm_hit &hit, double *s, double *t) const override;
 
-    bool has_vertex_normals() const { return !source_.normals.empty(); }
+    bool has_vertex_normals() const { return !source_.normals.empty() || computes_vertex_normals_; }
     // Flat shading from here on (Mitsuba's face_normals): the next prepare() has no normals.
-    void drop_vertex_normals() { source_.normals.clear(); }
+    void drop_vertex_normals() {
+        source_.normals.clear();
+        computes_vertex_normals_ = false;
+    }
+    // For a mesh without normals, what Mitsuba does with a mesh file that has none: vertex
+    // normals computed from the placed positions at every prepare() (geometry/vertex_normals.h;
+    // from the world positions, as Mitsuba computes them after its to_world).
+    void compute_vertex_normals() { computes_vertex_normals_ = source_.normals.empty(); }
 
     const MeshData &world() const { return *world_; }
     // The world-space data, shared with whoever keeps it (a mesh light) without a copy; a
@@ -38,6 +45,7 @@ private:
     MeshData source_;
     std::shared_ptr<MeshData> world_ = std::make_shared<MeshData>();
     double magnitude_ = 0;
+    bool computes_vertex_normals_ = false;
 };
 
 } // namespace ppm

@@ -53,13 +53,12 @@ void read_integrator(const JsonNode &node, RenderSettings &settings, std::int64_
     }
 }
 
-// `sensor`: ppm_camera from Mitsuba's perspective / thinlens parameters.
-ppm_camera read_sensor(const JsonNode *node) {
-    ppm_camera camera{};
-    camera.fov = 39.597752709049864; // Mitsuba: a 50 mm lens on 36 mm film, along x
+// `sensor`: the camera from Mitsuba's perspective / thinlens parameters.
+ppm_camera_v2 read_sensor(const JsonNode *node) {
+    ppm_camera_v2 camera;
+    ppm_camera_v2_init(&camera); // Mitsuba's fov (a 50 mm lens on 36 mm film, along x) and near clip
     camera.width = 768;
     camera.height = 576;
-    camera.near_clip = 0.01;
     Affine to_world;
     if (node) {
         const std::string type =
@@ -71,8 +70,15 @@ ppm_camera read_sensor(const JsonNode *node) {
         } else {
             // Mitsuba's perspective sensor takes a focus distance too (all its projective
             // cameras do); a pinhole has everything in focus, so it changes nothing.
-            node->allow_only({"type", "fov", "to_world", "near_clip", "film", "focus_distance"});
+            node->allow_only({"type", "fov", "to_world", "near_clip", "film", "focus_distance",
+                              "principal_point_offset_x", "principal_point_offset_y"});
             if (node->has("focus_distance")) node->at("focus_distance").positive();
+            if (node->has("principal_point_offset_x"))
+                camera.principal_point_offset_x =
+                    node->at("principal_point_offset_x").number_in(-1048576, 1048576, false, false);
+            if (node->has("principal_point_offset_y"))
+                camera.principal_point_offset_y =
+                    node->at("principal_point_offset_y").number_in(-1048576, 1048576, false, false);
         }
         if (node->has("fov")) camera.fov = node->at("fov").number_in(0, 180, true, true);
         if (node->has("near_clip")) camera.near_clip = node->at("near_clip").non_negative();

@@ -43,7 +43,7 @@ public:
     const std::vector<std::string> &warnings() const { return warnings_; }
 
     ppm_scene scene() const { return scene_; }
-    const ppm_camera &camera() const { return camera_; }
+    const ppm_camera_v2 &camera() const { return camera_; }
     const RenderSettings &settings() const { return settings_; }
     std::int64_t passes() const { return passes_; }
     double time_budget() const { return time_; }
@@ -54,7 +54,7 @@ private:
     void build(ppm_context context, const std::string &path, const JsonDocument &document, const std::string &folder);
 
     ppm_scene scene_ = nullptr; // keeps the context alive
-    ppm_camera camera_{};
+    ppm_camera_v2 camera_{};
     RenderSettings settings_;
     std::int64_t passes_ = 0;
     double time_ = 0;

@@ -236,14 +236,49 @@ void crop_window_is_part_of_the_film(void **) {
     }
 }
 
+// A principal point offset slides the image over the plane z = 1 by a fraction of its size:
+// film position (x, y) sees what the centred camera's (x + ox width, y + oy height) sees,
+// with a crop window too, and projection inverts it.
+void principal_point_offset_slides_the_image(void **) {
+    const CameraSettings centred_settings = oblique_settings();
+    CameraSettings offset_settings = centred_settings;
+    offset_settings.principal_point_offset_x = 0.125;
+    offset_settings.principal_point_offset_y = -0.25;
+    CameraSettings both_settings = offset_settings;
+    both_settings.crop_x0 = 100, both_settings.crop_y0 = 40, both_settings.crop_x1 = 300, both_settings.crop_y1 = 200;
+    const Camera centred(centred_settings), offset(offset_settings), both(both_settings);
+    assert_close(offset.pixel_size_at_unit_distance(), centred.pixel_size_at_unit_distance(), 1e-15);
+    for (double x : {0.0, 17.25, 199.5})
+        for (double y : {0.0, 80.5, 160.0}) {
+            const CameraRay a = offset.generate_ray(x, y, 0.5, 0.5);
+            assert_vec_close(a.direction, centred.generate_ray(x + 80, y - 120, 0.5, 0.5).direction, 1e-14);
+            assert_vec_close(both.generate_ray(x, y, 0.5, 0.5).direction,
+                             centred.generate_ray(x + 180, y - 80, 0.5, 0.5).direction, 1e-14);
+            double px = 0, py = 0;
+            assert_true(offset.project(a.origin + a.direction * 7.0, &px, &py));
+            assert_close(px, x, 1e-9);
+            assert_close(py, y, 1e-9);
+        }
+    for (double bad : {std::nan(""), 1e300}) {
+        CameraSettings s = centred_settings;
+        s.principal_point_offset_y = bad;
+        expect_invalid(s);
+    }
+}
+
 } // namespace
 
 int main() {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(centre_ray_goes_to_the_target), cmocka_unit_test(local_frame_follows_mitsuba),
-        cmocka_unit_test(fov_spans_the_image_width),     cmocka_unit_test(pixels_are_square_for_any_aspect),
-        cmocka_unit_test(project_inverts_generate_ray),  cmocka_unit_test(thin_lens_rays_meet_on_the_focus_plane),
-        cmocka_unit_test(invalid_settings_are_rejected), cmocka_unit_test(crop_window_is_part_of_the_film),
+        cmocka_unit_test(centre_ray_goes_to_the_target),
+        cmocka_unit_test(local_frame_follows_mitsuba),
+        cmocka_unit_test(fov_spans_the_image_width),
+        cmocka_unit_test(pixels_are_square_for_any_aspect),
+        cmocka_unit_test(project_inverts_generate_ray),
+        cmocka_unit_test(thin_lens_rays_meet_on_the_focus_plane),
+        cmocka_unit_test(invalid_settings_are_rejected),
+        cmocka_unit_test(crop_window_is_part_of_the_film),
+        cmocka_unit_test(principal_point_offset_slides_the_image),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

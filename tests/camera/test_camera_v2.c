@@ -398,6 +398,59 @@ static void test_crop_window_renders_part_of_the_image(void **state) {
     assert_ppm_error(ppm_renderer_create_v2(f->scene, &camera, &r), PPM_ERROR_INVALID_ARGUMENT, "crop window");
 }
 
+/* A principal point offset of a / width renders what a crop window a pixels to the right
+ * renders; a scene file's offset reaches the renderer, and the first camera struct, which
+ * cannot hold it, refuses it. */
+static void test_principal_point_offset_renders_a_shifted_window(void **state) {
+    fixture *f = *state;
+    build_sphere(f->scene);
+    ppm_camera_v2 camera = sphere_camera();
+    camera.aperture_radius = 0;
+    camera.focus_distance = 0;
+    const int x0 = 3, y0 = 2, cw = 6, ch = 5;
+    camera.crop_x0 = x0, camera.crop_y0 = y0, camera.crop_x1 = x0 + cw, camera.crop_y1 = y0 + ch;
+    float *crop = render_pinhole(f->scene, &camera, cw, ch, "sppm", 64);
+    camera.crop_x0 = 0, camera.crop_y0 = 0, camera.crop_x1 = cw, camera.crop_y1 = ch;
+    camera.principal_point_offset_x = (double)x0 / width;
+    camera.principal_point_offset_y = (double)y0 / height;
+    float *offset = render_pinhole(f->scene, &camera, cw, ch, "sppm", 64);
+    double peak = 0, same = 0;
+    for (int i = 0; i < cw * ch * 3; ++i) {
+        peak = fmax(peak, crop[i]);
+        same = fmax(same, fabs(crop[i] - offset[i]));
+    }
+    printf("principal point offset against a crop window: largest difference %.3g of the peak\n", same / peak);
+    assert_true(peak > 0);
+    assert_true(same < 0.05 * peak);
+    free(crop);
+    free(offset);
+
+    const char xml[] = "<scene version=\"3.0.0\"><sensor type=\"perspective\">"
+                       "<float name=\"principal_point_offset_x\" value=\"0.25\"/>"
+                       "<float name=\"principal_point_offset_y\" value=\"-0.125\"/></sensor>"
+                       "<shape type=\"sphere\"/><emitter type=\"point\"/></scene>";
+    ppm_scene_file file = NULL;
+    assert_ppm_ok(ppm_scene_file_load_memory(f->context, xml, sizeof xml - 1, "offset.xml", "", NULL, &file));
+    ppm_camera_v2 from_file;
+    ppm_camera_v2_init(&from_file);
+    assert_ppm_ok(ppm_scene_file_get_camera_v2(file, &from_file));
+    assert_true(from_file.principal_point_offset_x == 0.25 && from_file.principal_point_offset_y == -0.125);
+    ppm_camera v1;
+    assert_ppm_error(ppm_scene_file_get_camera(file, &v1), PPM_ERROR_UNSUPPORTED, "principal point offset");
+    ppm_renderer r = NULL;
+    assert_ppm_ok(ppm_scene_file_create_renderer(file, &r));
+    ppm_camera_v2 back;
+    ppm_camera_v2_init(&back);
+    assert_ppm_ok(ppm_renderer_get_camera_v2(r, &back));
+    assert_true(back.principal_point_offset_x == 0.25 && back.principal_point_offset_y == -0.125);
+    ppm_renderer_release(r);
+    ppm_scene_file_release(file);
+
+    camera.principal_point_offset_x = NAN;
+    assert_ppm_error(ppm_renderer_create_v2(f->scene, &camera, &r), PPM_ERROR_INVALID_ARGUMENT,
+                     "principal point offset");
+}
+
 #define TEST(name) cmocka_unit_test_setup_teardown(name, scene_fixture_setup, scene_fixture_teardown)
 
 int main(void) {
@@ -410,6 +463,7 @@ int main(void) {
         TEST(test_newer_callers_fields_are_unsupported),
         TEST(test_bad_sizes_are_refused),
         TEST(test_reserved_must_be_zero),
+        TEST(test_principal_point_offset_renders_a_shifted_window),
         TEST(test_bad_fields_are_named),
         TEST(test_null_arguments),
         TEST(test_uncommitted_scene),

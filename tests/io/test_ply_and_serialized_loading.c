@@ -41,6 +41,14 @@ static const char square_ply[] = "ply\n"
                                  "0 0 1 255 0 0\n2 0 1 0 255 0\n2 2 1 0 0 255\n0 2 1 9 9 9\n"
                                  "4 0 1 2 3\n";
 
+/* The cube [-1, 1]^3 without normals, two triangles a side, wound outwards. */
+static const char cube_ply[] = "ply\nformat ascii 1.0\nelement vertex 8\n"
+                               "property float x\nproperty float y\nproperty float z\n"
+                               "element face 12\nproperty list uchar int vertex_indices\nend_header\n"
+                               "-1 -1 -1\n-1 -1 1\n-1 1 -1\n-1 1 1\n1 -1 -1\n1 -1 1\n1 1 -1\n1 1 1\n"
+                               "3 0 1 3\n3 0 3 2\n3 4 6 7\n3 4 7 5\n3 0 4 5\n3 0 5 1\n"
+                               "3 2 3 7\n3 2 7 6\n3 0 2 6\n3 0 6 4\n3 1 5 7\n3 1 7 3\n";
+
 /* Traces a ray down the z axis at (x, y) and returns the hit distance (INFINITY on a miss). */
 static double hit_distance(ppm_scene scene, double x, double y) {
     ppm_ray ray = {{x, y, 5}, 0, {0, 0, -1}, INFINITY};
@@ -66,6 +74,35 @@ static void ply_file_loads_is_hit_and_warns_of_colours(void **state) {
     assert_close(hit_distance(f->scene, 0.5, 1.5), 4.0, 1e-12);
     assert_close(hit_distance(f->scene, 1.5, 0.5), 4.0, 1e-12);
     assert_true(isinf(hit_distance(f->scene, 2.5, 0.5)));
+}
+
+/* A mesh file without normals shades with Mitsuba's computed vertex normals, from the placed
+ * positions: on the cube stretched to [-2, 2] x [-1, 1]^2 each corner still meets three
+ * right angles, so near the corner (2, 1, 1) the shading normal is the diagonal
+ * (1, 1, 1) / sqrt(3), not the object normal carried by the transform, normalize(1/2, 1, 1).
+ * face_normals makes it flat. */
+static void ply_file_without_normals_shades_with_mitsubas_vertex_normals(void **state) {
+    scene_fixture *f = *state;
+    char path[4200];
+    snprintf(path, sizeof path, "%s/cube.ply", folder);
+    write_file(path, cube_ply, strlen(cube_ply));
+    uint32_t id = 0;
+    assert_int_equal(ppm_scene_load_ply(f->scene, path, &id), PPM_OK);
+    const double stretch[16] = {2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    assert_int_equal(ppm_scene_set_geometry_transform(f->scene, id, stretch), PPM_OK);
+    assert_int_equal(ppm_scene_commit(f->scene), PPM_OK);
+    const ppm_ray ray = {{10, 0.9999, 0.9999}, 0, {-1, 0, 0}, INFINITY};
+    ppm_hit hit;
+    assert_int_equal(ppm_scene_intersect(f->scene, &ray, 1, &hit), PPM_OK);
+    assert_int_equal(hit.geom_id, id);
+    assert_true(fabs(hit.t - 8) < 1e-9);
+    for (int a = 0; a < 3; ++a) assert_true(fabs(hit.ns[a] - 1 / sqrt(3.0)) < 1e-3);
+    assert_true(hit.ng[0] > 0.999999);
+
+    assert_int_equal(ppm_scene_set_mesh_face_normals(f->scene, id, 1), PPM_OK);
+    assert_int_equal(ppm_scene_commit(f->scene), PPM_OK);
+    assert_int_equal(ppm_scene_intersect(f->scene, &ray, 1, &hit), PPM_OK);
+    for (int a = 0; a < 3; ++a) assert_true(hit.ns[a] == hit.ng[a]);
 }
 
 static void damaged_or_missing_ply_files_are_refused_by_name(void **state) {
@@ -222,6 +259,7 @@ static int teardown(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(ply_file_loads_is_hit_and_warns_of_colours, setup, teardown),
+        cmocka_unit_test_setup_teardown(ply_file_without_normals_shades_with_mitsubas_vertex_normals, setup, teardown),
         cmocka_unit_test_setup_teardown(damaged_or_missing_ply_files_are_refused_by_name, setup, teardown),
         cmocka_unit_test_setup_teardown(serialized_file_loads_and_a_wrong_index_is_refused, setup, teardown),
         cmocka_unit_test_setup_teardown(scene_files_take_ply_and_serialized_shapes, setup, teardown),

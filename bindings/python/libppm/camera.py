@@ -14,9 +14,9 @@ Vec3 = Tuple[float, float, float]
 Crop = Tuple[int, int, int, int]
 
 # The camera as libppm._core takes and returns it: origin, target, up, fov, width, height,
-# aperture_radius, focus_distance, near_clip, crop ((0, 0, 0, 0): none).
+# aperture_radius, focus_distance, near_clip, crop ((0, 0, 0, 0): none), principal point offset.
 _CoreCamera = Tuple[Sequence[float], Sequence[float], Sequence[float], float, int, int, float,
-                    float, float, Sequence[int]]
+                    float, float, Sequence[int], Sequence[float]]
 
 
 @dataclass
@@ -29,6 +29,9 @@ class Camera:
     along the view axis (0 = at the lens). ``crop`` ``(x0, y0, x1, y1)`` renders only that
     window of the ``width`` x ``height`` image (columns x0 .. x1-1, rows y0 .. y1-1),
     projected as in the whole image: the image rendered is x1 - x0 by y1 - y0 pixels.
+    ``principal_point_offset`` ``(x, y)`` (Mitsuba's ``principal_point_offset_x`` / ``_y``)
+    is a shifted lens: pixel (px, py) sees what pixel (px + x width, py + y height) of the
+    centred camera sees.
 
     The defaults are those of a scene file without a ``sensor`` and of Mitsuba 3: at the
     origin looking along +z with +y up, the 39.6 degree field of view of a 50 mm lens on
@@ -45,6 +48,7 @@ class Camera:
     focus_distance: float = 0.0
     near_clip: float = 0.01
     crop: Optional[Crop] = None
+    principal_point_offset: Tuple[float, float] = (0.0, 0.0)
 
     @staticmethod
     def field_names() -> FrozenSet[str]:
@@ -69,10 +73,14 @@ class Camera:
             if len(values) != 4 or any(int(v) != v or not 0 <= v <= 0xFFFFFFFF for v in values):
                 raise ValueError(f"camera crop: expected (x0, y0, x1, y1) in pixels, got {self.crop!r}")
             crop = (int(values[0]), int(values[1]), int(values[2]), int(values[3]))
+        offset = tuple(self.principal_point_offset)
+        if len(offset) != 2:
+            raise ValueError("camera principal_point_offset: expected (x, y), got "
+                             f"{self.principal_point_offset!r}")
         return (vector(self.origin, "camera origin"), vector(self.target, "camera target"),
                 vector(self.up, "camera up"), float(self.fov), size[0], size[1],
                 float(self.aperture_radius), float(self.focus_distance), float(self.near_clip),
-                crop)
+                crop, (float(offset[0]), float(offset[1])))
 
     @classmethod
     def _from_tuple(cls, t: _CoreCamera) -> "Camera":
@@ -80,4 +88,5 @@ class Camera:
         x0, y0, x1, y1 = (int(v) for v in t[9])
         return cls((t[0][0], t[0][1], t[0][2]), (t[1][0], t[1][1], t[1][2]),
                    (t[2][0], t[2][1], t[2][2]), t[3], t[4], t[5], t[6], t[7], t[8],
-                   None if (x0, y0, x1, y1) == (0, 0, 0, 0) else (x0, y0, x1, y1))
+                   None if (x0, y0, x1, y1) == (0, 0, 0, 0) else (x0, y0, x1, y1),
+                   (float(t[10][0]), float(t[10][1])))

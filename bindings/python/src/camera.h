@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // ppm_camera_v2 as it crosses to Python: a tuple (origin, target, up, fov, width, height,
-// aperture_radius, focus_distance, near_clip), which libppm/camera.py turns into libppm.Camera.
+// aperture_radius, focus_distance, near_clip, crop, principal point offset), which
+// libppm/camera.py turns into libppm.Camera.
 #pragma once
 
 #include <ppm/ppm.h>
@@ -17,9 +18,10 @@ namespace ppm_py {
 
 using Vec3 = std::array<double, 3>;
 // origin, target, up, fov, width, height, aperture_radius, focus_distance, near_clip, crop
-// (x0, y0, x1, y1; all 0: none).
+// (x0, y0, x1, y1; all 0: none), principal point offset (x, y).
 using Crop = std::array<uint32_t, 4>;
-using CameraTuple = std::tuple<Vec3, Vec3, Vec3, double, uint32_t, uint32_t, double, double, double, Crop>;
+using Offset = std::array<double, 2>;
+using CameraTuple = std::tuple<Vec3, Vec3, Vec3, double, uint32_t, uint32_t, double, double, double, Crop, Offset>;
 
 inline ppm_camera_v2 to_camera(const CameraTuple &t) {
     ppm_camera_v2 c;
@@ -38,6 +40,8 @@ inline ppm_camera_v2 to_camera(const CameraTuple &t) {
     c.crop_y0 = crop[1];
     c.crop_x1 = crop[2];
     c.crop_y1 = crop[3];
+    c.principal_point_offset_x = std::get<10>(t)[0];
+    c.principal_point_offset_y = std::get<10>(t)[1];
     return c;
 }
 
@@ -51,7 +55,8 @@ inline CameraTuple from_camera(const ppm_camera_v2 &c) {
             c.aperture_radius,
             c.focus_distance,
             c.near_clip,
-            Crop{c.crop_x0, c.crop_y0, c.crop_x1, c.crop_y1}};
+            Crop{c.crop_x0, c.crop_y0, c.crop_x1, c.crop_y1},
+            Offset{c.principal_point_offset_x, c.principal_point_offset_y}};
 }
 
 } // namespace ppm_py

@@ -164,6 +164,28 @@ def test_warnings_can_be_errors_without_breaking_the_load(box_xml):
     assert os.path.exists(path)
 
 
+def test_principal_point_offset_slides_the_image(tmp_path):
+    """An offset of (a / width, b / height) renders the window a crop at (a, b) renders, and a
+    Mitsuba sensor's principal_point_offset_x / _y reaches the Python camera."""
+    scene = libppm.load_file(SMALL_BOX)
+    cropped = libppm.render(scene, passes=8, width=24, height=18, crop=(6, 3, 18, 12),
+                            photons_per_pass=2000)
+    offset = libppm.render(scene, passes=8, width=24, height=18, crop=(0, 0, 12, 9),
+                           principal_point_offset=(6 / 24, 3 / 18), photons_per_pass=2000)
+    np.testing.assert_allclose(offset, cropped, rtol=1e-6, atol=1e-7)
+    scene.close()
+    path = tmp_path / "offset.xml"
+    path.write_text('<scene version="3.0.0"><sensor type="perspective">'
+                    '<float name="principal_point_offset_x" value="0.25"/></sensor>'
+                    '<shape type="sphere"/><emitter type="point"/></scene>')
+    with libppm.load_file(path) as f:
+        assert f.camera.principal_point_offset == (0.25, 0.0)
+        with f.create_renderer() as renderer:
+            assert renderer.camera.principal_point_offset == (0.25, 0.0)
+    with pytest.raises(ValueError, match="principal_point_offset"):
+        libppm.Camera(principal_point_offset=(1.0,))._as_tuple()
+
+
 def test_size_and_crop_of_a_scene_file(tmp_path):
     """Keywords of the camera change the file's camera: another size, or a crop window whose
     pixels converge to those of the whole image at the same place."""

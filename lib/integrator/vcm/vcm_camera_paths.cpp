@@ -5,6 +5,7 @@
 #include "integrator/vcm/vcm_integrator.h"
 #include "integrator/vcm/vcm_vertex.h"
 #include "scene/spawn.h"
+#include "shading/shading_normals.h"
 
 #include <cmath>
 
@@ -75,7 +76,8 @@ Rgb connect(const PassInputs &in, const MisFactors &factors, const SurfacePoint 
     const double w = mis_connection(factors, mis, v.mis, camera_fwd_a, camera_rev_w, light_fwd_a, light_rev_w);
     const double tfar = shadow_tfar(d, sp.hit.p_error, v.sp.hit.p_error);
     if (!(tfar > 0) || in.scene.scene().occluded(spawn_ray(sp.hit, dir, tfar), RayHints{&sp.hit})) return Rgb();
-    return f_camera * f_light * v.throughput * (w * cos_camera * cos_light / d2);
+    return f_camera * f_light * v.throughput *
+           (w * cos_camera * cos_light * light_path_shading_correction(v.sp, v.sp.wo_local, wi_light) / d2);
 }
 
 } // namespace
@@ -151,7 +153,7 @@ Rgb VcmIntegrator::trace_camera_path(const PassInputs &in, const VcmPassState &s
                     const double w = merge_only ? 1.0
                                                 : mis_merge(state.mis, mis, light, sp.bsdf.pdf(sp.wo_local, wi) * cont,
                                                             sp.bsdf.pdf(wi, sp.wo_local) * cont);
-                    merged += f * v.throughput * w;
+                    merged += f * v.throughput * (w * arriving_flux_shading_factor(sp, wi, v.cos_arriving));
                 });
                 const double normalisation = 1.0 / (M_PI * state.radius * state.radius * state.mis.light_paths);
                 radiance += throughput * merged * normalisation;

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "integrator/vcm/vcm_vertex.h"
 #include "scene/spawn.h"
+#include "shading/shading_normals.h"
 
 #include <tbb/parallel_for.h>
 
@@ -43,8 +44,10 @@ void trace_to_camera(const PassInputs &in, const VcmPassState &state, const VcmL
     const double tfar = (d - camera.near_clip() / cos_camera) * (1 - 1e-7) - 8 * v.sp.hit.p_error;
     if (!(tfar > 0) || in.scene.scene().occluded(spawn_ray(v.sp.hit, dir, tfar), RayHints{&v.sp.hit})) return;
     const std::uint32_t px = static_cast<std::uint32_t>(x), py = static_cast<std::uint32_t>(y);
-    splats.emplace_back(py * static_cast<std::uint32_t>(camera.width()) + px,
-                        v.throughput * f * (w * camera_pdf_a / state.mis.light_paths));
+    splats.emplace_back(
+        py * static_cast<std::uint32_t>(camera.width()) + px,
+        v.throughput * f *
+            (w * camera_pdf_a * light_path_shading_correction(v.sp, v.sp.wo_local, wi) / state.mis.light_paths));
 }
 
 } // namespace
@@ -116,7 +119,7 @@ void VcmIntegrator::trace_light_path(const PassInputs &in, const VcmPassState &s
         VcmScatter s;
         if (!vcm_scatter(v.sp, rng, TransportMode::Importance, s)) return;
         mis.scatter(state.mis, s.specular, std::fabs(s.wi.z), s.pdf_fwd, s.pdf_rev);
-        throughput = throughput * s.weight;
+        throughput = throughput * s.weight * light_path_shading_correction(v.sp, v.sp.wo_local, s.wi);
         ray = spawn_ray(v.sp.hit, v.sp.frame.to_world(s.wi));
         leaving = &v.sp.hit;
     }
@@ -191,8 +194,9 @@ void VcmIntegrator::estimate_pass(const PassInputs &in, std::uint32_t pass, Pass
         state.merge_records.resize(order.size());
         for (std::size_t k = 0; k < order.size(); ++k) {
             const VcmLightVertex &v = *state.vertices[order[k]];
-            state.merge_records[k] = {v.sp.frame.to_world(v.sp.wo_local), v.throughput, v.mis.dvcm, v.mis.dvm,
-                                      v.path_length};
+            const Vec3 arriving = v.sp.frame.to_world(v.sp.wo_local);
+            state.merge_records[k] = {arriving,  v.throughput,  v.mis.dvcm,
+                                      v.mis.dvm, v.path_length, static_cast<float>(std::fabs(dot(arriving, v.sp.ng)))};
         }
     }
     out.radiance.assign(pixels, Rgb());

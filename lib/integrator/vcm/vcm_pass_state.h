@@ -46,6 +46,7 @@ struct VcmPassState {
         Rgb throughput;
         double dvcm = 0, dvm = 0;
         std::uint32_t path_length = 0;
+        float cos_arriving = 1; // |arriving . geometric normal| where the light vertex lies
     };
     std::vector<MergeRecord> merge_records;
     // Per block of light subpaths while they are traced (vcm_integrator.cpp).
