@@ -185,6 +185,21 @@ ppm::TextureRef unit_float_or_texture(ppm_scene_t &scene, Params &p, const char 
         *value = fallback;
         return scene.shading.texture(p.texture(name));
     }
+    if (p.has(name)) {
+        const std::vector<double> numbers = p.number_list(name);
+        if (numbers.size() == 3) {
+            // A colour, as Mitsuba's RGB variants read one where a float is wanted (its srgb
+            // texture's eval_1 is the channels' mean, which mask and blendbsdf clip to [0, 1]).
+            *value = std::clamp((numbers[0] + numbers[1] + numbers[2]) / 3.0, 0.0, 1.0);
+            return {};
+        }
+        if (numbers.size() != 1)
+            p.fail(name, "must be a number or 3 numbers (r, g, b), not " + std::to_string(numbers.size()) + " numbers");
+        if (!(numbers[0] >= 0 && numbers[0] <= 1))
+            p.fail(name, "must lie in [0, 1], not " + ppm::format_number(numbers[0]));
+        *value = numbers[0];
+        return {};
+    }
     *value = p.number_in(name, 0, 1, fallback);
     return {};
 }

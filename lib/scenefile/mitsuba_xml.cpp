@@ -388,10 +388,23 @@ private:
         return located(out, node, source);
     }
 
+    // What a colour parameter is, for its spectrum's conversion (Mitsuba's Properties::
+    // get_texture and get_unbounded_texture): a reflectance (D65-weighted, clamped to [0, 1]),
+    // an unbounded quantity such as a conductor's eta and k (D65-weighted, clamped to >= 0)
+    // or an emission (unweighted, clamped to >= 0).
+    enum class ColourRange { Reflectance, Unbounded, Emission };
+
+    static ColourRange colour_range(const std::string &tag, const std::string &name) {
+        if (tag == "emitter") return ColourRange::Emission;
+        static const std::set<std::string> unbounded = {"eta", "k", "alpha", "alpha_u", "alpha_v"};
+        return tag == "bsdf" && unbounded.count(name) ? ColourRange::Unbounded : ColourRange::Reflectance;
+    }
+
     // <rgb> as it is; <spectrum> as Mitsuba 3's RGB variants read it (math/spectrum.cpp). In an
     // emitter a spectrum is an emission: a single value is then the equal-energy white of that
-    // power, not grey. Reflectances are clamped to [0, 1], emissions to >= 0, with a warning.
-    Json::Value colour(const pugi::xml_node &node, const Source &source, bool emission) {
+    // power, not grey. Clamped by its range (above), with a warning.
+    Json::Value colour(const pugi::xml_node &node, const Source &source, ColourRange range) {
+        const bool emission = range == ColourRange::Emission;
         const std::string tag = node.name();
         const std::string text = substitute(node, source, "value");
         Json::Value out(Json::arrayValue);
@@ -428,12 +441,13 @@ private:
         }
         Rgb rgb = spectrum_to_rgb(wavelengths, values, !emission);
         const Rgb clamped(std::max(rgb.r, 0.0), std::max(rgb.g, 0.0), std::max(rgb.b, 0.0));
+        const bool to_one = range == ColourRange::Reflectance;
         const Rgb bounded =
-            emission ? clamped : Rgb(std::min(clamped.r, 1.0), std::min(clamped.g, 1.0), std::min(clamped.b, 1.0));
+            to_one ? Rgb(std::min(clamped.r, 1.0), std::min(clamped.g, 1.0), std::min(clamped.b, 1.0)) : clamped;
         if (!(bounded.r == rgb.r && bounded.g == rgb.g && bounded.b == rgb.b))
             out_.warnings.push_back(where(node, source) + ": the spectrum's colour (" + format_number(rgb.r) + ", " +
                                     format_number(rgb.g) + ", " + format_number(rgb.b) +
-                                    ") lies outside the sRGB gamut" + (emission ? "" : " or above 1") + ": clamped");
+                                    ") lies outside the sRGB gamut" + (to_one ? " or above 1" : "") + ": clamped");
         for (double c : {bounded.r, bounded.g, bounded.b}) out.append(c);
         return located(out, node, source);
     }
@@ -557,7 +571,7 @@ private:
                 check_attributes(child, source, {"name", "value", "x", "y", "z"});
                 const std::string name = required(child, source, "name");
                 if (out.isMember(name)) error(child, source, "the parameter '" + name + "' is given twice");
-                out[name] = property(child, source, tag == "emitter");
+                out[name] = property(child, source, colour_range(tag, name));
             } else if (kind == "transform") {
                 check_attributes(child, source, {"name"});
                 out[required(child, source, "name")] = transform(child, source);
@@ -593,10 +607,10 @@ private:
         return located(out, node, source);
     }
 
-    Json::Value property(const pugi::xml_node &node, const Source &source, bool in_emitter) {
+    Json::Value property(const pugi::xml_node &node, const Source &source, ColourRange range) {
         const std::string kind = node.name();
         if (kind == "point" || kind == "vector") return vector3(node, source);
-        if (kind == "rgb" || kind == "spectrum") return colour(node, source, in_emitter);
+        if (kind == "rgb" || kind == "spectrum") return colour(node, source, range);
         const std::string text = substitute(node, source, "value");
         if (kind == "string") {
             if (std::string(node.attribute("name").value()) == "filename")

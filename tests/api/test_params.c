@@ -352,6 +352,29 @@ static void test_mask_passes_light_through(void **state) {
     }
 }
 
+/* Given as a colour, the opacity is the mean of its channels, as Mitsuba's RGB variants read
+ * a colour where a float is wanted: (0.1, 0.4, 0.7) passes what 0.4 does. */
+static void test_mask_opacity_as_a_colour_is_its_mean(void **state) {
+    fixture *f = *state;
+    const double rho[3] = {0.8, 0.5, 0.3}, black[3] = {0, 0, 0}, o[3] = {0.1, 0.4, 0.7};
+    uint32_t plane = 0, ink = 0, mask = 0;
+    assert_ppm_ok(ppm_scene_add_diffuse_material(f->scene, rho, &plane));
+    assert_ppm_ok(ppm_scene_add_diffuse_material(f->scene, black, &ink));
+    const ppm_param params[] = {numbers("opacity", o, 3), id_param("bsdf", PPM_PARAM_MATERIAL, ink)};
+    assert_ppm_ok(ppm_scene_add_material(f->scene, "mask", params, 2, &mask));
+    double mean[3];
+    render_lit_plane(f->scene, plane, mask, mean);
+    const double unit = lit_plane_mean();
+    for (int c = 0; c < 3; ++c) {
+        const double expected = (1 - 0.4) * rho[c] * unit;
+        print_message("mask of a colour, channel %d: mean %.5f, expected %.5f\n", c, mean[c], expected);
+        assert_close(mean[c], expected, 0.02 * expected);
+    }
+    const ppm_param two[] = {numbers("opacity", o, 2), id_param("bsdf", PPM_PARAM_MATERIAL, ink)};
+    assert_ppm_error(ppm_scene_add_material(f->scene, "mask", two, 2, NULL), PPM_ERROR_INVALID_ARGUMENT,
+                     "'opacity' must be a number or 3 numbers (r, g, b), not 2 numbers");
+}
+
 static void test_blend_and_mask_bad_values(void **state) {
     fixture *f = *state;
     const double grey[3] = {0.5, 0.5, 0.5}, big = 1.5, nan_value = NAN;
@@ -393,6 +416,8 @@ int main(void) {
         cmocka_unit_test_setup_teardown(test_blendbsdf_renders_the_weighted_mean, scene_fixture_setup,
                                         scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(test_mask_passes_light_through, scene_fixture_setup, scene_fixture_teardown),
+        cmocka_unit_test_setup_teardown(test_mask_opacity_as_a_colour_is_its_mean, scene_fixture_setup,
+                                        scene_fixture_teardown),
         cmocka_unit_test_setup_teardown(test_blend_and_mask_bad_values, scene_fixture_setup, scene_fixture_teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -197,6 +197,17 @@ void spectra_become_the_rgb_mitsuba_gives_them(void **) {
     assert_rgb(clamped.root["bsdfs"]["blue"]["reflectance"], 0.00939023, 0, 0.201667);
     assert_int_equal(clamped.warnings.size(), 1);
     assert_contains(clamped.warnings[0], "narrow.xml:2:36: <spectrum>: the spectrum's colour");
+    // A conductor's eta and k are unbounded (Mitsuba's get_unbounded_texture): D65-weighted
+    // like a reflectance, but not clamped to 1.
+    const XmlScene metal = read_mitsuba_xml(write("metal.xml", R"(<scene version="3.0.0">
+    <bsdf type="conductor" id="m"><spectrum name="eta" value="360:2, 830:2"/>
+        <spectrum name="k" value="360:3.5, 830:3.5"/></bsdf>
+</scene>
+)"),
+                                            {});
+    assert_rgb(metal.root["bsdfs"]["m"]["eta"], 2 * 0.998985, 2 * 0.998874, 2 * 0.998802);
+    assert_rgb(metal.root["bsdfs"]["m"]["k"], 3.5 * 0.998985, 3.5 * 0.998874, 3.5 * 0.998802);
+    assert_int_equal(metal.warnings.size(), 0);
     assert_contains(error_of([&] {
                         read_mitsuba_xml(write("bad.xml", R"(<scene version="3.0.0"><bsdf type="diffuse" id="x">
 <spectrum name="reflectance" value="500:0.1, 400:0.2"/></bsdf></scene>)"),
