@@ -585,6 +585,7 @@ private:
                                                            : std::string(found->second.node.name());
                 if (role == "bsdf" && !child.attribute("name") && out["type"].asString() == "blendbsdf")
                     role = out.isMember("bsdf_0") ? "bsdf_1" : "bsdf_0";
+                if (!supported_nested(found->second.node, *found->second.source, child, source)) continue;
                 // A BSDF referred to in any role (bsdf, blendbsdf's bsdf_0 and bsdf_1) is the
                 // named material, shared.
                 if (std::string(found->second.node.name()) == "bsdf") {
@@ -599,12 +600,50 @@ private:
                 if (kind == "bsdf" && !child.attribute("name") && out["type"].asString() == "blendbsdf")
                     role = out.isMember("bsdf_0") ? "bsdf_1" : "bsdf_0";
                 if (out.isMember(role)) error(child, source, "a second '" + role + "' in the same object");
+                if (!supported_nested(child, source, child, source)) continue;
                 out[role] = object(child, source, depth + 1);
             } else {
                 error(child, source, "unknown element inside <" + tag + ">");
             }
         }
         return located(out, node, source);
+    }
+
+    // Whether the nested object `node` (written at `at`) is one libppm renders: textures of
+    // the texture table; no media. Otherwise an error, or with --lenient a warning, and the
+    // parameter it fills keeps its default.
+    bool supported_nested(const pugi::xml_node &node, const Source &source, const pugi::xml_node &at,
+                          const Source &at_source) {
+        const std::string tag = node.name();
+        std::string what, left_out = ": left out";
+        if (tag == "texture" && !renderable("texture").count(node.attribute("type").value())) {
+            what = "texture type '" + std::string(node.attribute("type").value()) + "' is not supported by libppm" +
+                   supported_list("texture");
+            left_out = ": left out, the parameter keeps its default";
+        } else if (tag == "medium" || tag == "phase" || tag == "volume") {
+            what = "<" + tag + "> is not supported by libppm (participating media are not rendered)";
+        }
+        if (what.empty()) return true;
+        if (!options_.lenient) error(at, at_source, what + " (with --lenient it is left out with a warning)");
+        substituted(at, at_source, what + left_out);
+        return false;
+    }
+
+    // " (supported: a, b, ...)" for the types of `tag` libppm renders.
+    static std::string supported_list(const char *tag) {
+        std::string list;
+        for (const std::string &type : renderable(tag)) list += (list.empty() ? "" : ", ") + type;
+        return " (supported: " + list + ")";
+    }
+
+    // A warning for what --lenient replaced or left out, counted for the summary.
+    void substituted(const pugi::xml_node &node, const Source &source, const std::string &what) {
+        warn(node, source, what);
+        out_.substituted_at.push_back(where(node, source));
+    }
+    void substituted(const Json::Value &value, const char *tag, const std::string &what) {
+        warn(value, tag, what);
+        out_.substituted_at.push_back(where(value, tag));
     }
 
     Json::Value property(const pugi::xml_node &node, const Source &source, ColourRange range) {
@@ -668,13 +707,13 @@ private:
                 error(node, source, "a second <integrator>");
             integrator(object(node, source), node, source);
         } else {
-            skip(node, source, "<" + tag + "> is not rendered by libppm");
+            skip(node, source, "<" + tag + "> is not supported by libppm");
         }
     }
 
     void skip(const pugi::xml_node &node, const Source &source, const std::string &what) {
         if (!options_.lenient) error(node, source, what + " (with --lenient it is skipped with a warning)");
-        warn(node, source, what + ": skipped");
+        substituted(node, source, what + ": skipped");
     }
 
     // Unwraps twosided (libppm's opaque materials are two-sided) and resolves named indices of
@@ -694,8 +733,15 @@ private:
             return value;
         }
         if (!renderable("bsdf").count(type)) {
-            if (!options_.lenient) return value; // the builder names the type and what it renders
-            warn(value, "bsdf", "BSDF type '" + type + "' is not rendered by libppm: diffuse grey 0.5 instead");
+            const std::string what = "BSDF type '" + type + "' is not supported by libppm";
+            if (!options_.lenient)
+                error(value, "bsdf", what + supported_list("bsdf") + " (with --lenient it is replaced with a warning)");
+            // A wrapper that only bends the shading frame: what it wraps, as it is.
+            if ((type == "bumpmap" || type == "normalmap") && value.isMember("bsdf")) {
+                substituted(value, "bsdf", what + ": the BSDF it wraps is rendered without it");
+                return bsdf(value["bsdf"]);
+            }
+            substituted(value, "bsdf", what + ": diffuse grey 0.5 instead");
             Json::Value grey(Json::objectValue);
             grey["type"] = "diffuse";
             grey.setOffsetStart(value.getOffsetStart());
@@ -718,8 +764,12 @@ private:
 
     Json::Value emitter(Json::Value value) {
         const std::string type = value["type"].asString();
-        if (!renderable("emitter").count(type) && options_.lenient) {
-            warn(value, "emitter", "emitter type '" + type + "' is not rendered by libppm: skipped");
+        if (!renderable("emitter").count(type)) {
+            const std::string what = "emitter type '" + type + "' is not supported by libppm";
+            if (!options_.lenient)
+                error(value, "emitter",
+                      what + supported_list("emitter") + " (with --lenient it is skipped with a warning)");
+            substituted(value, "emitter", what + ": skipped");
             return Json::Value();
         }
         return value;
@@ -727,8 +777,12 @@ private:
 
     Json::Value shape(Json::Value value) {
         const std::string type = value["type"].asString();
-        if (!renderable("shape").count(type) && options_.lenient) {
-            warn(value, "shape", "shape type '" + type + "' is not rendered by libppm: skipped");
+        if (!renderable("shape").count(type)) {
+            const std::string what = "shape type '" + type + "' is not supported by libppm";
+            if (!options_.lenient)
+                error(value, "shape",
+                      what + supported_list("shape") + " (with --lenient it is skipped with a warning)");
+            substituted(value, "shape", what + ": skipped");
             return Json::Value();
         }
         if (value.isMember("bsdf")) value["bsdf"] = bsdf(value["bsdf"]);

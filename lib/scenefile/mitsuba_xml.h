@@ -44,6 +44,8 @@ struct XmlScene {
     // scene that were found in none of the folders searched (an object that names one may
     // still be left out, by --lenient).
     std::vector<std::string> failure_notes;
+    std::vector<std::string> substituted_at; // "file:line:column <tag>" of what --lenient replaced or left
+                                             // out (each also a warning)
 };
 
 // Whether `text` looks like an XML document (its first non-blank character is '<').

@@ -33,6 +33,20 @@ bool is_generic_texture(const JsonNode &color) {
 
 } // namespace
 
+bool SceneBuilder::substituted(const JsonNode &node, const Error &e, const std::string &instead) {
+    if (!lenient_ || (e.status() != PPM_ERROR_PARSE && e.status() != PPM_ERROR_INVALID_ARGUMENT)) return false;
+    lenient_->warnings.push_back(std::string(e.what()) + ": " + instead);
+    lenient_->locations.push_back(node.where());
+    return true;
+}
+
+std::uint32_t SceneBuilder::grey_material(const JsonNode &at) {
+    const double grey[3] = {0.5, 0.5, 0.5};
+    std::uint32_t id = 0;
+    check(at, ppm_scene_add_diffuse_material(scene_, grey, &id));
+    return id;
+}
+
 void SceneBuilder::check(const JsonNode &node, ppm_status status) const {
     if (status != PPM_OK) fail(status, node.where() + ": " + ppm_last_error_message());
 }
@@ -56,6 +70,15 @@ void SceneBuilder::add_bsdfs(const JsonNode &bsdfs) {
 }
 
 std::uint32_t SceneBuilder::add_bsdf(const JsonNode &bsdf) {
+    try {
+        return add_bsdf_as_given(bsdf);
+    } catch (const Error &e) {
+        if (!substituted(bsdf, e, "diffuse grey 0.5 instead")) throw;
+        return grey_material(bsdf);
+    }
+}
+
+std::uint32_t SceneBuilder::add_bsdf_as_given(const JsonNode &bsdf) {
     bsdf.require_object();
     const std::string type = bsdf.at("type").string();
     // libppm's older bitmap form of a colour goes around the texture table: the material
@@ -107,6 +130,15 @@ std::uint32_t SceneBuilder::nested_material(const JsonNode &bsdf) {
 }
 
 std::uint32_t SceneBuilder::add_texture(const JsonNode &texture) {
+    try {
+        return add_texture_as_given(texture);
+    } catch (const Error &e) {
+        if (!substituted(texture, e, "left out, the parameter keeps its default")) throw;
+        return PPM_INVALID_ID;
+    }
+}
+
+std::uint32_t SceneBuilder::add_texture_as_given(const JsonNode &texture) {
     texture.require_object();
     const std::string type = texture.at("type").string();
     const SceneParams params = params_of(texture);
@@ -124,10 +156,14 @@ void SceneBuilder::add_emitters(const JsonNode &emitters) {
 }
 
 void SceneBuilder::add_emitter(const JsonNode &emitter) {
-    emitter.require_object();
-    const std::string type = emitter.at("type").string();
-    const SceneParams params = params_of(emitter);
-    params.check(ppm_scene_add_light(scene_, type.c_str(), params.data(), params.size(), nullptr));
+    try {
+        emitter.require_object();
+        const std::string type = emitter.at("type").string();
+        const SceneParams params = params_of(emitter);
+        params.check(ppm_scene_add_light(scene_, type.c_str(), params.data(), params.size(), nullptr));
+    } catch (const Error &e) {
+        if (!substituted(emitter, e, "skipped")) throw;
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -150,6 +186,14 @@ std::uint32_t SceneBuilder::shape_material(const JsonNode &shape) {
 }
 
 void SceneBuilder::add_shape(const JsonNode &shape) {
+    try {
+        add_shape_as_given(shape);
+    } catch (const Error &e) {
+        if (!substituted(shape, e, "skipped")) throw;
+    }
+}
+
+void SceneBuilder::add_shape_as_given(const JsonNode &shape) {
     shape.require_object();
     const std::string type = shape.at("type").string();
     // A missing file is the scene file's error, located at its name.
@@ -159,13 +203,17 @@ void SceneBuilder::add_shape(const JsonNode &shape) {
     params.add_material("bsdf", material);
     std::uint32_t geom = 0;
     params.check(ppm_scene_add_shape(scene_, type.c_str(), params.data(), params.size(), &geom));
-    if (shape.has("emitter")) {
-        const JsonNode emitter = shape.at("emitter");
+    if (!shape.has("emitter")) return;
+    const JsonNode emitter = shape.at("emitter");
+    try {
         emitter.allow_only({"type", "radiance"});
         emitter.at("type").one_of({"area"});
         const std::array<double, 3> radiance =
             emitter.has("radiance") ? emitter.at("radiance").color(false) : std::array<double, 3>{1, 1, 1};
         check(emitter, ppm_scene_set_geometry_emission(scene_, geom, radiance.data()));
+    } catch (const Error &e) {
+        // The shape is in the scene already: it stays, without emission.
+        if (!substituted(emitter, e, "the shape is kept without emission")) throw;
     }
 }
 

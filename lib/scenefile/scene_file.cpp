@@ -125,6 +125,8 @@ struct ReadDocument {
     std::string folder;
     std::vector<std::string> warnings;
     std::vector<std::string> failure_notes; // said only if loading fails
+    bool lenient = false;                   // XML read with --lenient
+    std::vector<std::string> substituted;   // where the XML reader's lenient reading substituted
 };
 
 ReadDocument read_document(const SceneFileSource &source) {
@@ -143,6 +145,8 @@ ReadDocument read_document(const SceneFileSource &source) {
         read.document = std::make_unique<JsonDocument>(std::move(scene.root), std::move(scene.sources));
         read.warnings = std::move(scene.warnings);
         read.failure_notes = std::move(scene.failure_notes);
+        read.lenient = source.lenient;
+        read.substituted = std::move(scene.substituted_at);
         return read;
     }
     if (!source.defines.empty())
@@ -158,19 +162,30 @@ ReadDocument read_document(const SceneFileSource &source) {
 SceneFile::SceneFile(ppm_context context, const SceneFileSource &source) {
     const ReadDocument read = read_document(source);
     warnings_ = read.warnings;
+    LenientLog lenient;
+    lenient.locations = read.substituted;
     try {
-        build(context, source.path, *read.document, read.folder);
-    } catch (const LoadError &) {
-        throw;
+        build(context, source.path, *read.document, read.folder, read.lenient ? &lenient : nullptr);
     } catch (const Error &e) {
         std::vector<std::string> said = warnings_;
+        said.insert(said.end(), lenient.warnings.begin(), lenient.warnings.end());
         said.insert(said.end(), read.failure_notes.begin(), read.failure_notes.end());
         throw LoadError(e, said);
+    }
+    warnings_.insert(warnings_.end(), lenient.warnings.begin(), lenient.warnings.end());
+    // One line at the end lists every substitution again, so that none is missed among other
+    // warnings.
+    if (!lenient.locations.empty()) {
+        std::string list;
+        for (const std::string &at : lenient.locations) list += (list.empty() ? "" : ", ") + at;
+        warnings_.push_back(source.path + ": --lenient replaced or left out " +
+                            std::to_string(lenient.locations.size()) + " element" +
+                            (lenient.locations.size() == 1 ? "" : "s") + ", at " + list);
     }
 }
 
 void SceneFile::build(ppm_context context, const std::string &path, const JsonDocument &document,
-                      const std::string &folder) {
+                      const std::string &folder, LenientLog *lenient) {
     const JsonNode root(document, document.root(), "");
     root.allow_only({"version", "integrator", "sensor", "bsdfs", "emitters", "shapes"});
     if (root.has("version")) root.at("version").integer(1, 1);
@@ -186,7 +201,7 @@ void SceneFile::build(ppm_context context, const std::string &path, const JsonDo
     const ppm_status created = ppm_scene_create(context, &scene_);
     if (created != PPM_OK) fail(created, ppm_last_error_message());
     try {
-        SceneBuilder builder(scene_, folder);
+        SceneBuilder builder(scene_, folder, lenient);
         if (root.has("bsdfs")) builder.add_bsdfs(root.at("bsdfs"));
         if (root.has("emitters")) builder.add_emitters(root.at("emitters"));
         builder.add_shapes(root.at("shapes"));

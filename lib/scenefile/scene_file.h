@@ -17,6 +17,7 @@
 namespace ppm {
 
 class JsonDocument;
+struct LenientLog;
 
 // Where a scene file's text comes from and how to read it.
 struct SceneFileSource {
@@ -51,7 +52,8 @@ public:
 private:
     // The scene, camera and settings from the document; `folder`: what its file names are
     // relative to.
-    void build(ppm_context context, const std::string &path, const JsonDocument &document, const std::string &folder);
+    void build(ppm_context context, const std::string &path, const JsonDocument &document, const std::string &folder,
+               LenientLog *lenient);
 
     ppm_scene scene_ = nullptr; // keeps the context alive
     ppm_camera_v2 camera_{};

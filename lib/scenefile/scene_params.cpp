@@ -63,8 +63,10 @@ SceneParams::SceneParams(const JsonNode &object, const std::string &folder, cons
             strings_.push_back(std::move(s));
             params_.push_back({names_.back().c_str(), PPM_PARAM_STRING, nullptr, 0, strings_.back().c_str(), 0});
         } else if (member.is_object()) {
+            const std::uint32_t id = texture(member);
+            if (id == PPM_INVALID_ID) continue;
             names_.push_back(key);
-            params_.push_back({names_.back().c_str(), PPM_PARAM_TEXTURE, nullptr, 0, nullptr, texture(member)});
+            params_.push_back({names_.back().c_str(), PPM_PARAM_TEXTURE, nullptr, 0, nullptr, id});
         } else {
             member.fail("expected a number, an array of numbers, a string or an object");
         }

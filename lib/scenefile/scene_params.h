@@ -26,7 +26,8 @@ public:
     // Every member of `object` but "type" and those in `skip`: numbers, booleans (0/1) and
     // arrays of numbers (nested arrays flattened in order) as numbers; {"type": "rgb",
     // "value": ...} as its colour; `to_world`/`to_uv` (any transform form) as 16 numbers;
-    // strings as strings; "bsdf*" members as materials; other objects as textures. `folder`
+    // strings as strings; "bsdf*" members as materials; other objects as textures (a texture
+    // callback that returns PPM_INVALID_ID leaves the member out: lenient reading). `folder`
     // resolves `filename` members.
     SceneParams(const JsonNode &object, const std::string &folder, const NestedMaterial &material,
                 const NestedTexture &texture, std::initializer_list<const char *> skip = {});

@@ -216,7 +216,7 @@ void spectra_become_the_rgb_mitsuba_gives_them(void **) {
                     "bad.xml:2:1: <spectrum>: wavelengths must increase");
 }
 
-void lenient_mode_substitutes_with_a_warning_and_strict_mode_keeps_the_type(void **) {
+void lenient_mode_substitutes_with_a_warning_and_strict_mode_names_the_element(void **) {
     const std::string path = write("rough.xml", R"(<scene version="3.0.0">
     <emitter type="sunsky"><string name="filename" value="sky"/></emitter>
     <shape type="sphere">
@@ -232,13 +232,65 @@ void lenient_mode_substitutes_with_a_warning_and_strict_mode_keeps_the_type(void
     assert_false(scene.root.isMember("emitters"));
     std::string warnings;
     for (const std::string &w : scene.warnings) warnings += w + "\n";
-    assert_contains(warnings, "rough.xml:2:5: <emitter>: emitter type 'sunsky' is not rendered by libppm: skipped");
-    assert_contains(warnings, "rough.xml:4:9: <bsdf>: BSDF type 'hair'");
+    assert_contains(warnings, "rough.xml:2:5: <emitter>: emitter type 'sunsky' is not supported by libppm: skipped");
+    assert_contains(warnings, "rough.xml:4:9: <bsdf>: BSDF type 'hair' is not supported by libppm: diffuse grey");
     assert_contains(warnings, "rough.xml:6:5: <medium>");
+    assert_int_equal(scene.substituted_at.size(), 3);
 
-    // Strict: the medium is refused here; the BSDF and emitter types pass on to the builder,
-    // which names them.
-    assert_contains(error_of([&] { read_mitsuba_xml(path, {}); }), "rough.xml:6:5: <medium>: <medium> is not rendered");
+    // Strict: the first unsupported element is the error, with what libppm supports.
+    const std::string strict = error_of([&] { read_mitsuba_xml(path, {}); });
+    assert_contains(strict, "rough.xml:2:5: <emitter>: emitter type 'sunsky' is not supported by libppm (supported: ");
+    assert_contains(strict, "(with --lenient it is skipped with a warning)");
+}
+
+// --lenient reaches every level: a texture inside a BSDF inside a blend keeps its parameter's
+// default, a bump map leaves the BSDF it wraps (whose named IOR is read), a medium a shape
+// refers to is left out; strict reading names each of them at its element.
+void lenient_mode_substitutes_at_every_nesting_level(void **) {
+    const std::string path = write("nested.xml", R"(<scene version="3.0.0">
+    <medium type="homogeneous" id="fog"/>
+    <shape type="sphere">
+        <bsdf type="blendbsdf">
+            <bsdf type="diffuse"><texture type="mesh_attribute" name="reflectance"/></bsdf>
+            <bsdf type="roughplastic"/>
+        </bsdf>
+        <ref name="interior" id="fog"/>
+    </shape>
+    <shape type="sphere">
+        <bsdf type="bumpmap">
+            <texture type="bitmap" name="arbitrary"><string name="filename" value="bumps.png"/></texture>
+            <bsdf type="dielectric"><string name="ext_ior" value="air"/></bsdf>
+        </bsdf>
+    </shape>
+</scene>
+)");
+    XmlOptions lenient;
+    lenient.lenient = true;
+    const XmlScene scene = read_mitsuba_xml(path, lenient);
+    const Json::Value &blend = scene.root["shapes"][0]["bsdf"];
+    assert_string_equal(blend["type"].asCString(), "blendbsdf");
+    assert_false(blend["bsdf_0"].isMember("reflectance"));
+    assert_false(scene.root["shapes"][0].isMember("interior"));
+    const Json::Value &glass = scene.root["shapes"][1]["bsdf"];
+    assert_string_equal(glass["type"].asCString(), "dielectric");
+    assert_close(glass["ext_ior"].asDouble(), 1.000277, 0);
+    std::string warnings;
+    for (const std::string &w : scene.warnings) warnings += w + "\n";
+    assert_contains(warnings, "nested.xml:5:34: <texture>: texture type 'mesh_attribute' is not supported by libppm");
+    assert_contains(warnings, "nested.xml:8:9: <ref>: <medium> is not supported by libppm");
+    assert_contains(warnings,
+                    "nested.xml:11:9: <bsdf>: BSDF type 'bumpmap' is not supported by libppm: the BSDF it wraps");
+    assert_contains(warnings, "nested.xml:2:5: <medium>: <medium> is not supported by libppm: skipped");
+    if (scene.substituted_at.size() != 4)
+        fail_msg("%zu substitutions:\n%s", scene.substituted_at.size(), warnings.c_str());
+    assert_contains(error_of([&] { read_mitsuba_xml(path, {}); }),
+                    "nested.xml:2:5: <medium>: <medium> is not supported by libppm");
+    const std::string texture_only = write("nested_texture.xml", R"(<scene version="3.0.0"><shape type="sphere">
+<bsdf type="blendbsdf"><bsdf type="diffuse"><texture type="mesh_attribute" name="reflectance"/></bsdf>
+<bsdf type="diffuse"/></bsdf></shape></scene>)");
+    assert_contains(error_of([&] { read_mitsuba_xml(texture_only, {}); }),
+                    "nested_texture.xml:2:45: <texture>: texture type 'mesh_attribute' is not supported by libppm "
+                    "(supported: ");
 }
 
 void malformed_or_inconsistent_files_are_located_errors(void **) {
@@ -440,7 +492,8 @@ int main() {
         cmocka_unit_test(a_scene_with_defaults_includes_and_refs_maps_onto_the_json_structure),
         cmocka_unit_test(the_field_of_view_is_converted_to_the_x_axis),
         cmocka_unit_test(spectra_become_the_rgb_mitsuba_gives_them),
-        cmocka_unit_test(lenient_mode_substitutes_with_a_warning_and_strict_mode_keeps_the_type),
+        cmocka_unit_test(lenient_mode_substitutes_with_a_warning_and_strict_mode_names_the_element),
+        cmocka_unit_test(lenient_mode_substitutes_at_every_nesting_level),
         cmocka_unit_test(malformed_or_inconsistent_files_are_located_errors),
         cmocka_unit_test(blendbsdf_and_mask_nest_their_bsdfs),
         cmocka_unit_test(an_area_emitter_at_the_top_is_the_emission_of_the_shapes_that_refer_to_it),

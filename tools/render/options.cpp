@@ -100,9 +100,12 @@ void add_options(CLI::App &app, Options &o, RawOptions &raw) {
         ->type_name("NAME=VALUE")
         ->group(scene);
     app.add_flag("--lenient", o.lenient,
-                 "render what is supported of an XML file: unknown BSDFs\n"
-                 "become grey diffuse, unknown emitters and textures are\n"
-                 "left out, each with a warning (default: an error)")
+                 "render what is supported of an XML file, at every\n"
+                 "level: unsupported BSDFs and refused parameters make a\n"
+                 "grey diffuse material, unsupported textures and media\n"
+                 "are left out, unsupported emitters and shapes skipped,\n"
+                 "each with a warning and listed again at the end\n"
+                 "(default: an error naming the element)")
         ->group(scene);
     app.add_option("--size", raw.size,
                    "image size in pixels, e.g. 640x480 (default the film's);\n"
