@@ -694,6 +694,11 @@ typedef struct ppm_camera {
  * version is INVALID_ARGUMENT; a larger size from a newer header is accepted when every
  * byte this library does not know is 0 (a newer field left at its "as before" value), and
  * is UNSUPPORTED otherwise, naming the first such byte's offset. `reserved` must be 0. */
+/* ppm_camera_v2's pixel filters. */
+#define PPM_PIXEL_FILTER_BOX 0u
+#define PPM_PIXEL_FILTER_TENT 1u
+#define PPM_PIXEL_FILTER_GAUSSIAN 2u
+
 typedef struct ppm_camera_v2 {
     size_t size;            /* sizeof(ppm_camera_v2) as the caller compiled it */
     double origin[3];       /* default (0, 0, 0) */
@@ -714,7 +719,17 @@ typedef struct ppm_camera_v2 {
      * of the centred camera sees (x to the right, y down the image); fractions of the film's
      * size, finite, default 0 (centred). */
     double principal_point_offset_x, principal_point_offset_y;
-    uint64_t reserved[4]; /* room for fields to come without changing size; 0 */
+    /* Pixel reconstruction filter, Mitsuba's: PPM_PIXEL_FILTER_BOX (0, default: the pixel
+     * itself), _TENT (1 - |x| / radius) or _GAUSSIAN (exp(-x^2 / (2 stddev^2)) minus its
+     * value at 4 stddev, Mitsuba's default filter); pixel_filter_parameter is the tent's
+     * radius or the gaussian's stddev in pixels, in (0, 16], 0 for Mitsuba's default (1 and
+     * 0.5). A pixel is the filter-weighted mean of the image around its centre, within the
+     * image; camera paths sample the filter and light tracing splats to every pixel it
+     * reaches, in every mode. */
+    uint32_t pixel_filter;
+    uint32_t reserved_pad; /* 0 */
+    double pixel_filter_parameter;
+    uint64_t reserved[2]; /* room for fields to come without changing size; 0 */
 } ppm_camera_v2;
 
 /* Sets *camera to the defaults above, `size` to sizeof(ppm_camera_v2) and every other byte

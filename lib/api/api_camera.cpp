@@ -82,6 +82,14 @@ ppm::CameraSettings camera_settings(const ppm_camera_v2 *camera) {
     settings.crop_y1 = crop_coordinate(known.crop_y1, "crop_y1");
     settings.principal_point_offset_x = known.principal_point_offset_x;
     settings.principal_point_offset_y = known.principal_point_offset_y;
+    if (known.reserved_pad != 0) invalid_argument("camera reserved_pad is not 0");
+    if (known.pixel_filter > PPM_PIXEL_FILTER_GAUSSIAN)
+        invalid_argument("camera pixel_filter " + std::to_string(known.pixel_filter) +
+                         " is not PPM_PIXEL_FILTER_BOX (0), _TENT (1) or _GAUSSIAN (2)");
+    settings.filter.type = static_cast<ppm::PixelFilterType>(known.pixel_filter);
+    settings.filter.parameter = known.pixel_filter_parameter;
+    if (settings.filter.type == ppm::PixelFilterType::Box && known.pixel_filter_parameter != 0)
+        invalid_argument("camera pixel_filter_parameter must be 0 for the box filter");
     return settings;
 }
 
@@ -107,6 +115,8 @@ void write_camera(const ppm::CameraSettings &settings, ppm_camera_v2 *out) {
     camera.crop_y1 = static_cast<uint32_t>(settings.crop_y1);
     camera.principal_point_offset_x = settings.principal_point_offset_x;
     camera.principal_point_offset_y = settings.principal_point_offset_y;
+    camera.pixel_filter = static_cast<uint32_t>(settings.filter.type);
+    camera.pixel_filter_parameter = settings.filter.parameter;
     std::memcpy(out, &camera, std::min(size, sizeof camera));
     if (size > sizeof camera)
         std::memset(reinterpret_cast<unsigned char *>(out) + sizeof camera, 0, size - sizeof camera);

@@ -80,6 +80,7 @@ Camera::Camera(const CameraSettings &s) {
     if (!(s.near_clip >= 0 && std::isfinite(s.near_clip)))
         invalid_argument("camera near_clip must be finite and >= 0, got " + format_number(s.near_clip));
     near_clip_ = s.near_clip;
+    filter_ = PixelFilter(s.filter, width_, height_);
 }
 
 CameraRay Camera::generate_ray(double x, double y, double lens_u, double lens_v) const {

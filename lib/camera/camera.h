@@ -39,6 +39,7 @@
 // 0: the whole film.
 #pragma once
 
+#include "camera/pixel_filter.h"
 #include "math/vec3.h"
 
 namespace ppm {
@@ -56,6 +57,7 @@ struct CameraSettings {
     int crop_x0 = 0, crop_y0 = 0, crop_x1 = 0, crop_y1 = 0;
     // Fractions of the film's width and height, finite.
     double principal_point_offset_x = 0, principal_point_offset_y = 0;
+    PixelFilterSettings filter; // the pixel reconstruction filter (camera/pixel_filter.h)
     bool offset() const { return principal_point_offset_x != 0 || principal_point_offset_y != 0; }
     bool cropped() const { return crop_x0 != 0 || crop_y0 != 0 || crop_x1 != 0 || crop_y1 != 0; }
 };
@@ -91,6 +93,9 @@ public:
     int width() const { return width_; }
     int height() const { return height_; }
     bool is_thin_lens() const { return aperture_radius_ > 0; }
+    // The pixel filter over the rendered image: where camera paths sample and light tracing
+    // splats (camera/pixel_filter.h).
+    const PixelFilter &filter() const { return filter_; }
     double near_clip() const { return near_clip_; }
     const Vec3 &position() const { return origin_; }
     const Vec3 &forward() const { return forward_; }
@@ -107,6 +112,7 @@ private:
     int width_ = 0, height_ = 0;
     double crop_x0_ = 0, crop_y0_ = 0;
     double aperture_radius_ = 0, focus_distance_ = 0, near_clip_ = 0;
+    PixelFilter filter_;
 };
 
 } // namespace ppm

@@ -7,10 +7,12 @@
 
 namespace ppm {
 
-ppm_ray camera_ray(const Camera &camera, std::uint32_t pixel, CounterRng &rng) {
+ppm_ray camera_ray(const Camera &camera, std::uint32_t pixel, CounterRng &rng, double *film_density) {
     const std::uint32_t width = static_cast<std::uint32_t>(camera.width()), row = pixel / width;
-    const double x = (pixel - row * width) + rng.uniform();
-    const double y = row + rng.uniform();
+    const double u1 = rng.uniform(), u2 = rng.uniform();
+    double x, y, density;
+    camera.filter().sample(static_cast<int>(pixel - row * width), static_cast<int>(row), u1, u2, &x, &y, &density);
+    if (film_density) *film_density = density;
     // A pinhole draws no lens sample (one counter block less per pixel).
     double lens_u = 0.5, lens_v = 0.5;
     if (camera.is_thin_lens()) {

@@ -17,8 +17,10 @@ constexpr std::uint8_t kCameraStream = 0;
 constexpr std::uint8_t kDirectStream = 2; // PPM: direct light at the fixed points
 // (kPhotonStream = 1 is the photon tracer's.)
 
-// Pixel `pixel`'s ray through a uniformly jittered point of it (and of the lens).
-ppm_ray camera_ray(const Camera &camera, std::uint32_t pixel, CounterRng &rng);
+// Pixel `pixel`'s ray through a point of the film drawn by the camera's pixel filter (a
+// uniformly jittered point of the pixel for the box) and of the lens; `film_density`, when
+// given, receives that point's density per pixel area (camera/pixel_filter.h).
+ppm_ray camera_ray(const Camera &camera, std::uint32_t pixel, CounterRng &rng, double *film_density = nullptr);
 
 // The squared initial gather radius of a visible point `path_length` from the camera.
 double footprint_r2(const PassInputs &in, double path_length);

@@ -102,10 +102,12 @@ std::uint64_t Renderer::camera_hash() const {
     const CameraSettings &c = camera_settings_;
     h.add(c.origin), h.add(c.target), h.add(c.up), h.add(c.fov), h.add(c.width), h.add(c.height);
     h.add(c.aperture_radius), h.add(c.focus_distance), h.add(c.near_clip);
-    // Only a crop window and an offset are hashed, so that checkpoints of other renders stay
-    // readable.
+    // Only a crop window, an offset and a filter other than the box are hashed, so that
+    // checkpoints of other renders stay readable.
     if (c.cropped()) h.add(c.crop_x0), h.add(c.crop_y0), h.add(c.crop_x1), h.add(c.crop_y1);
     if (c.offset()) h.add(c.principal_point_offset_x), h.add(c.principal_point_offset_y);
+    if (c.filter.type != PixelFilterType::Box)
+        h.add(static_cast<int>(c.filter.type)), h.add(pixel_filter_parameter(c.filter));
     return h.value();
 }
 

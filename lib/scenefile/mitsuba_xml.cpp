@@ -808,10 +808,14 @@ private:
                 if (film.isMember(key)) size[key] = film[key];
             if (size.isMember("width")) width = size["width"].asDouble();
             if (size.isMember("height")) height = size["height"].asDouble();
-            if (film.isMember("rfilter") && film["rfilter"]["type"].asString() != "box")
-                warn(node, source,
-                     "pixel filter '" + film["rfilter"]["type"].asString() + "' read as a box filter (libppm's)");
-            if (!size.empty()) out["film"] = located(size, node, source);
+            size["rfilter"] = pixel_filter(film.isMember("rfilter") ? film["rfilter"] : Json::Value(), node, source);
+            out["film"] = located(size, node, source);
+        }
+        if (!value.isMember("film")) {
+            // Mitsuba's default film: hdrfilm with its default, gaussian filter.
+            Json::Value film(Json::objectValue);
+            film["rfilter"] = pixel_filter(Json::Value(), node, source);
+            out["film"] = located(film, node, source);
         }
         if (value.isMember("sampler")) {
             // One pass per sample: both are the unit of progress, and a pass is as cheap as a
@@ -852,6 +856,24 @@ private:
                 key != "srf")
                 out[key] = value[key]; // the builder names what it does not know
         out_.root["sensor"] = located(out, node, source);
+    }
+
+    // The film's reconstruction filter as libppm reads it: Mitsuba's default (none given) is
+    // the gaussian; the filters with negative lobes, which libppm does not render, are read as
+    // that with a warning.
+    Json::Value pixel_filter(const Json::Value &rfilter, const pugi::xml_node &node, const Source &source) {
+        Json::Value out(Json::objectValue);
+        const std::string type = rfilter.isNull() ? "gaussian" : rfilter["type"].asString();
+        if (type == "box" || type == "tent" || type == "gaussian") {
+            out = rfilter.isNull() ? Json::Value(Json::objectValue) : rfilter;
+            out["type"] = type;
+        } else {
+            warn(rfilter, "rfilter",
+                 "pixel filter '" + type +
+                     "' is not supported by libppm (its negative lobes): read as Mitsuba's default, the gaussian");
+            out["type"] = "gaussian";
+        }
+        return located(out, node, source);
     }
 
     Json::Value &integrator_settings() {

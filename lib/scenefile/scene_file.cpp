@@ -53,6 +53,23 @@ void read_integrator(const JsonNode &node, RenderSettings &settings, std::int64_
     }
 }
 
+// `film.rfilter`: Mitsuba's reconstruction filters box, tent (radius) and gaussian (stddev).
+void read_pixel_filter(const JsonNode &node, ppm_camera_v2 &camera) {
+    const std::string type = node.at("type").one_of({"box", "tent", "gaussian"});
+    if (type == "box") {
+        node.allow_only({"type"});
+        camera.pixel_filter = PPM_PIXEL_FILTER_BOX;
+    } else if (type == "tent") {
+        node.allow_only({"type", "radius"});
+        camera.pixel_filter = PPM_PIXEL_FILTER_TENT;
+        if (node.has("radius")) camera.pixel_filter_parameter = node.at("radius").number_in(0, 16, true, false);
+    } else {
+        node.allow_only({"type", "stddev"});
+        camera.pixel_filter = PPM_PIXEL_FILTER_GAUSSIAN;
+        if (node.has("stddev")) camera.pixel_filter_parameter = node.at("stddev").number_in(0, 4, true, false);
+    }
+}
+
 // `sensor`: the camera from Mitsuba's perspective / thinlens parameters.
 ppm_camera_v2 read_sensor(const JsonNode *node) {
     ppm_camera_v2 camera;
@@ -85,7 +102,8 @@ ppm_camera_v2 read_sensor(const JsonNode *node) {
         if (node->has("to_world")) to_world = parse_transform(node->at("to_world"));
         if (node->has("film")) {
             const JsonNode film = node->at("film");
-            film.allow_only({"width", "height"});
+            film.allow_only({"width", "height", "rfilter"});
+            if (film.has("rfilter")) read_pixel_filter(film.at("rfilter"), camera);
             constexpr std::int64_t max_side = std::int64_t(1) << 28;
             if (film.has("width")) camera.width = static_cast<std::uint32_t>(film.at("width").integer(1, max_side));
             if (film.has("height")) camera.height = static_cast<std::uint32_t>(film.at("height").integer(1, max_side));

@@ -201,10 +201,39 @@ static void test_reserved_must_be_zero(void **state) {
     fixture *f = *state;
     build_sphere(f->scene);
     ppm_camera_v2 camera = sphere_camera();
-    camera.reserved[3] = 1;
+    camera.reserved[1] = 1;
     ppm_renderer r = NULL;
-    assert_ppm_error(ppm_renderer_create_v2(f->scene, &camera, &r), PPM_ERROR_INVALID_ARGUMENT, "reserved[3]");
+    assert_ppm_error(ppm_renderer_create_v2(f->scene, &camera, &r), PPM_ERROR_INVALID_ARGUMENT, "reserved[1]");
     assert_null(r);
+    camera.reserved[1] = 0;
+    camera.reserved_pad = 1;
+    assert_ppm_error(ppm_renderer_create_v2(f->scene, &camera, &r), PPM_ERROR_INVALID_ARGUMENT, "reserved_pad");
+}
+
+/* The pixel filter reaches the renderer and comes back; bad ones are named. */
+static void test_pixel_filter_fields(void **state) {
+    fixture *f = *state;
+    build_sphere(f->scene);
+    ppm_camera_v2 camera = sphere_camera();
+    camera.pixel_filter = PPM_PIXEL_FILTER_GAUSSIAN;
+    camera.pixel_filter_parameter = 0.7;
+    ppm_renderer r = NULL;
+    assert_ppm_ok(ppm_renderer_create_v2(f->scene, &camera, &r));
+    ppm_camera_v2 back;
+    ppm_camera_v2_init(&back);
+    assert_ppm_ok(ppm_renderer_get_camera_v2(r, &back));
+    assert_true(back.pixel_filter == PPM_PIXEL_FILTER_GAUSSIAN && back.pixel_filter_parameter == 0.7);
+    assert_ppm_ok(ppm_renderer_render_pass(r));
+    ppm_renderer_release(r);
+    camera.pixel_filter = 5;
+    assert_ppm_error(ppm_renderer_create_v2(f->scene, &camera, &r), PPM_ERROR_INVALID_ARGUMENT, "pixel_filter 5");
+    camera.pixel_filter = PPM_PIXEL_FILTER_TENT;
+    camera.pixel_filter_parameter = -1;
+    assert_ppm_error(ppm_renderer_create_v2(f->scene, &camera, &r), PPM_ERROR_INVALID_ARGUMENT, "radius");
+    camera.pixel_filter = PPM_PIXEL_FILTER_BOX;
+    camera.pixel_filter_parameter = 1;
+    assert_ppm_error(ppm_renderer_create_v2(f->scene, &camera, &r), PPM_ERROR_INVALID_ARGUMENT,
+                     "pixel_filter_parameter must be 0 for the box");
 }
 
 static void test_bad_fields_are_named(void **state) {
@@ -463,6 +492,7 @@ int main(void) {
         TEST(test_newer_callers_fields_are_unsupported),
         TEST(test_bad_sizes_are_refused),
         TEST(test_reserved_must_be_zero),
+        TEST(test_pixel_filter_fields),
         TEST(test_principal_point_offset_renders_a_shifted_window),
         TEST(test_bad_fields_are_named),
         TEST(test_null_arguments),

@@ -68,7 +68,7 @@ static void flat_metal_xml(char *out, size_t size, double theta_degrees, const c
              "    <transform name=\"to_world\">"
              "<lookat origin=\"0, %.17g, %.17g\" target=\"0, 0, 0\" up=\"0, 1, 0\"/></transform>\n"
              "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"%d\"/>"
-             "<integer name=\"height\" value=\"%d\"/></film>\n"
+             "<integer name=\"height\" value=\"%d\"/><rfilter type=\"box\"/></film>\n"
              "  </sensor>\n"
              "  %s\n"
              "  <shape type=\"rectangle\"><transform name=\"to_world\"><scale value=\"1000\"/></transform>"

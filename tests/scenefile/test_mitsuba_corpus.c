@@ -4,7 +4,7 @@
  * also renders with Mitsuba. Here every one loads without a warning beyond the integrator
  * note, renders a finite, non-negative, lit image in the default mode, and shows what its
  * construct means: the folders of <path>, the principal point offset, the frame of a lookat
- * without an up vector, the top-level area emitter referred to by id. */
+ * without an up vector, the top-level area emitter referred to by id, the pixel filters. */
 #include <ppm/ppm.h>
 
 #include "api_asserts.h"
@@ -59,7 +59,8 @@ static void every_corpus_scene_loads_and_renders(void **state) {
     scene_fixture *f = *state;
     assert_ppm_ok(ppm_context_set_warning_callback(f->context, count_warning, NULL));
     const char *const names[] = {"area_emitter_reference.xml", "lookat_without_up.xml", "path_search.xml",
-                                 "plastic_nonlinear.xml",      "principal_point.xml",   "spot_wide.xml"};
+                                 "pixel_filter_default.xml",   "pixel_filter_tent.xml", "plastic_nonlinear.xml",
+                                 "principal_point.xml",        "spot_wide.xml"};
     for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
         ppm_scene_file file = load_and_render(f->context, names[i]);
         ppm_camera_v2 camera;
@@ -79,7 +80,14 @@ static void every_corpus_scene_loads_and_renders(void **state) {
             assert_close(camera.up[1], 0, 1e-12);
         }
         /* The room's five walls, the lamp (or the sphere) and the cube found through <path>. */
-        if (strcmp(names[i], "path_search.xml") == 0) assert_int_equal(geometries, 7);
+        if (strcmp(names[i], "path_search.xml") == 0 || strstr(names[i], "pixel_filter_") == names[i])
+            assert_int_equal(geometries, 7);
+        /* No rfilter: Mitsuba's gaussian; the tent keeps its radius; the others are boxes. */
+        const unsigned filter = strcmp(names[i], "pixel_filter_default.xml") == 0 ? PPM_PIXEL_FILTER_GAUSSIAN
+                                : strcmp(names[i], "pixel_filter_tent.xml") == 0  ? PPM_PIXEL_FILTER_TENT
+                                                                                  : PPM_PIXEL_FILTER_BOX;
+        assert_int_equal(camera.pixel_filter, filter);
+        if (filter == PPM_PIXEL_FILTER_TENT) assert_true(camera.pixel_filter_parameter == 1.5);
         if (strcmp(names[i], "area_emitter_reference.xml") == 0) {
             ppm_renderer r = NULL;
             assert_ppm_ok(ppm_scene_file_create_renderer(file, &r));

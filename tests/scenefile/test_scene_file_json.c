@@ -531,7 +531,7 @@ static void test_blend_mask_and_checkerboard_in_json_and_xml(void **state) {
                     "  <transform name=\"to_world\"><lookat origin=\"0, 0, 3\" target=\"0, 0, 0\" up=\"0, 1, 0\"/>"
                     "</transform>\n"
                     "  <film type=\"hdrfilm\"><integer name=\"width\" value=\"16\"/>"
-                    "<integer name=\"height\" value=\"16\"/></film></sensor>\n"
+                    "<integer name=\"height\" value=\"16\"/><rfilter type=\"box\"/></film></sensor>\n"
                     " <bsdf type=\"diffuse\" id=\"red\"><rgb name=\"reflectance\" value=\"0.8, 0.1, 0.1\"/></bsdf>\n"
                     " <shape type=\"rectangle\"><bsdf type=\"blendbsdf\"><float name=\"weight\" value=\"0.25\"/>\n"
                     "  <ref name=\"bsdf_0\" id=\"red\"/>\n"

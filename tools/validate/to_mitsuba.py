@@ -285,7 +285,8 @@ class Translator:
         return {"type": "path", "max_depth": int(i.get("max_depth", 16)) + 1}
 
     def sensor(self, s):
-        check_keys(s, {"type", "fov", "to_world", "near_clip", "aperture_radius", "focus_distance", "film"},
+        check_keys(s, {"type", "fov", "to_world", "near_clip", "aperture_radius", "focus_distance", "film",
+                       "principal_point_offset_x", "principal_point_offset_y"},
                    "sensor")
         kind = s.get("type", "perspective")
         if kind not in ("perspective", "thinlens"):
@@ -293,7 +294,8 @@ class Translator:
         to_world = transform(s.get("to_world"), "sensor.to_world")
         self.camera_origin = to_world[:3, 3]
         film = s.get("film", {})
-        check_keys(film, {"width", "height"}, "sensor.film")
+        check_keys(film, {"width", "height", "rfilter"}, "sensor.film")
+        rfilter = dict(film.get("rfilter", {"type": "box"}))  # the same names in both formats
         width, height = int(film.get("width", 768)), int(film.get("height", 576))
         if self.film_scale:
             width, height = max(1, round(width * self.film_scale)), max(1, round(height * self.film_scale))
@@ -303,7 +305,10 @@ class Translator:
                "to_world": self.matrix(to_world),
                "sampler": {"type": "independent", "sample_count": self.spp},
                "film": {"type": "hdrfilm", "width": width, "height": height, "pixel_format": "rgb",
-                        "rfilter": {"type": "box"}}}
+                        "rfilter": rfilter}}
+        for key in ("principal_point_offset_x", "principal_point_offset_y"):
+            if key in s:
+                out[key] = number(s[key], f"sensor.{key}")
         if kind == "thinlens":
             for key in ("aperture_radius", "focus_distance"):
                 if key not in s:

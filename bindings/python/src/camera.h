@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // ppm_camera_v2 as it crosses to Python: a tuple (origin, target, up, fov, width, height,
-// aperture_radius, focus_distance, near_clip, crop, principal point offset), which
-// libppm/camera.py turns into libppm.Camera.
+// aperture_radius, focus_distance, near_clip, crop, principal point offset, pixel filter and
+// its parameter), which libppm/camera.py turns into libppm.Camera.
 #pragma once
 
 #include <ppm/ppm.h>
@@ -18,10 +18,12 @@ namespace ppm_py {
 
 using Vec3 = std::array<double, 3>;
 // origin, target, up, fov, width, height, aperture_radius, focus_distance, near_clip, crop
-// (x0, y0, x1, y1; all 0: none), principal point offset (x, y).
+// (x0, y0, x1, y1; all 0: none), principal point offset (x, y), pixel filter (PPM_PIXEL_FILTER_*)
+// and its parameter.
 using Crop = std::array<uint32_t, 4>;
 using Offset = std::array<double, 2>;
-using CameraTuple = std::tuple<Vec3, Vec3, Vec3, double, uint32_t, uint32_t, double, double, double, Crop, Offset>;
+using CameraTuple =
+    std::tuple<Vec3, Vec3, Vec3, double, uint32_t, uint32_t, double, double, double, Crop, Offset, uint32_t, double>;
 
 inline ppm_camera_v2 to_camera(const CameraTuple &t) {
     ppm_camera_v2 c;
@@ -42,6 +44,8 @@ inline ppm_camera_v2 to_camera(const CameraTuple &t) {
     c.crop_y1 = crop[3];
     c.principal_point_offset_x = std::get<10>(t)[0];
     c.principal_point_offset_y = std::get<10>(t)[1];
+    c.pixel_filter = std::get<11>(t);
+    c.pixel_filter_parameter = std::get<12>(t);
     return c;
 }
 
@@ -56,7 +60,9 @@ inline CameraTuple from_camera(const ppm_camera_v2 &c) {
             c.focus_distance,
             c.near_clip,
             Crop{c.crop_x0, c.crop_y0, c.crop_x1, c.crop_y1},
-            Offset{c.principal_point_offset_x, c.principal_point_offset_y}};
+            Offset{c.principal_point_offset_x, c.principal_point_offset_y},
+            c.pixel_filter,
+            c.pixel_filter_parameter};
 }
 
 } // namespace ppm_py

@@ -147,6 +147,9 @@ def test_camera_defaults_are_those_of_a_scene_file_without_sensor(tmp_path):
         if field.name == "crop":  # no crop window: None
             assert from_file.crop is None and default.crop is None
             continue
+        if field.name == "pixel_filter":
+            assert from_file.pixel_filter == default.pixel_filter == "box"
+            continue
         np.testing.assert_allclose(getattr(from_file, field.name), getattr(default, field.name),
                                    err_msg=field.name)
 
@@ -184,6 +187,26 @@ def test_principal_point_offset_slides_the_image(tmp_path):
             assert renderer.camera.principal_point_offset == (0.25, 0.0)
     with pytest.raises(ValueError, match="principal_point_offset"):
         libppm.Camera(principal_point_offset=(1.0,))._as_tuple()
+
+
+def test_pixel_filter_of_a_scene_file(tmp_path):
+    """A Mitsuba scene without an rfilter has Mitsuba's gaussian; a tent keeps its radius; the
+    filter smooths an image, which keeps its mean."""
+    path = tmp_path / "filtered.xml"
+    path.write_text('<scene version="3.0.0"><sensor type="perspective"><film type="hdrfilm">'
+                    '<integer name="width" value="16"/><integer name="height" value="16"/></film></sensor>'
+                    '<shape type="sphere"><point name="center" value="0, 0, 6"/></shape>'
+                    '<emitter type="point"><point name="position" value="0, 1, 2"/>'
+                    '<rgb name="intensity" value="10"/></emitter></scene>')
+    with libppm.load_file(path) as f:
+        assert (f.camera.pixel_filter, f.camera.pixel_filter_parameter) == ("gaussian", 0.0)
+        smooth = libppm.render(f, passes=16, photons_per_pass=2000)
+        sharp = libppm.render(f, passes=16, photons_per_pass=2000, pixel_filter="box")
+    assert abs(smooth.mean() / sharp.mean() - 1) < 0.05
+    # Horizontal neighbours differ less through the filter.
+    assert np.abs(np.diff(smooth, axis=1)).mean() < np.abs(np.diff(sharp, axis=1)).mean()
+    with pytest.raises(ValueError, match="pixel_filter"):
+        libppm.Camera(pixel_filter="mitchell")._as_tuple()
 
 
 def test_size_and_crop_of_a_scene_file(tmp_path):

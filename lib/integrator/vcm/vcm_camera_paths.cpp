@@ -87,8 +87,11 @@ Rgb VcmIntegrator::trace_camera_path(const PassInputs &in, const VcmPassState &s
     const RenderScene &scene = in.scene;
     const bool merge_only = techniques_ == Techniques::MergeOnly;
     CounterRng rng(in.settings.seed, kVcmCameraStream, pass, pixel);
-    ppm_ray ray = camera_ray(in.camera, pixel, rng);
-    const double camera_pdf_w = vcm_camera_pdf_w(in.camera, state.pixel_area, Vec3::from(ray.dir));
+    double film_density = 1;
+    ppm_ray ray = camera_ray(in.camera, pixel, rng, &film_density);
+    // The solid-angle density of this pixel's ray: the film position's density per pixel area
+    // (the pixel filter's) over the pixel's solid angle.
+    const double camera_pdf_w = vcm_camera_pdf_w(in.camera, state.pixel_area, Vec3::from(ray.dir)) * film_density;
     if (!(camera_pdf_w > 0)) return Rgb();
     // Without light tracing no technique makes the camera's first vertex from the light side.
     SubpathMis mis = SubpathMis::camera_start(state.mis, state.light_tracing ? camera_pdf_w : 0.0);

@@ -22,12 +22,12 @@ namespace {
 constexpr std::uint32_t kLightBlock = 64;
 
 // Light tracing: light vertex `v` seen by the (pinhole) camera, its radiance splatted to the
-// pixel it projects to.
+// pixels the pixel filter reaches from where it projects to.
 void trace_to_camera(const PassInputs &in, const VcmPassState &state, const VcmLightVertex &v,
                      std::vector<std::pair<std::uint32_t, Rgb>> &splats) {
     const Camera &camera = in.camera;
     double x, y;
-    if (!camera.project(v.sp.p, &x, &y) || !(x >= 0 && y >= 0 && x < camera.width() && y < camera.height())) return;
+    if (!camera.project(v.sp.p, &x, &y) || !(x >= 0 && y >= 0 && x <= camera.width() && y <= camera.height())) return;
     const Vec3 to_camera = camera.position() - v.sp.p;
     const double d2 = length2(to_camera), d = std::sqrt(d2);
     const Vec3 dir = to_camera / d;
@@ -38,16 +38,40 @@ void trace_to_camera(const PassInputs &in, const VcmPassState &state, const VcmL
     if (f.is_black() || !(camera_pdf_w > 0) || depth < camera.near_clip()) return;
     const double camera_pdf_a = camera_pdf_w * std::fabs(wi.z) / d2;
     const double rev = v.sp.bsdf.pdf(wi, v.sp.wo_local) * vcm_continuation(v.sp.bsdf);
-    const double w = mis_light_trace(state.mis, v.mis, camera_pdf_a, rev);
     // The camera sees from its near clip plane on (what lies before it is not seen).
     const double cos_camera = depth / d;
     const double tfar = (d - camera.near_clip() / cos_camera) * (1 - 1e-7) - 8 * v.sp.hit.p_error;
     if (!(tfar > 0) || in.scene.scene().occluded(spawn_ray(v.sp.hit, dir, tfar), RayHints{&v.sp.hit})) return;
-    const std::uint32_t px = static_cast<std::uint32_t>(x), py = static_cast<std::uint32_t>(y);
-    splats.emplace_back(
-        py * static_cast<std::uint32_t>(camera.width()) + px,
-        v.throughput * f *
-            (w * camera_pdf_a * light_path_shading_correction(v.sp, v.sp.wo_local, wi) / state.mis.light_paths));
+    const double shading = light_path_shading_correction(v.sp, v.sp.wo_local, wi);
+    const PixelFilter &filter = camera.filter();
+    const int width = camera.width(), height = camera.height();
+    if (filter.is_box()) {
+        if (!(x < width && y < height)) return;
+        const double w = mis_light_trace(state.mis, v.mis, camera_pdf_a, rev);
+        const std::uint32_t px = static_cast<std::uint32_t>(x), py = static_cast<std::uint32_t>(y);
+        splats.emplace_back(py * static_cast<std::uint32_t>(width) + px,
+                            v.throughput * f * (w * camera_pdf_a * shading / state.mis.light_paths));
+        return;
+    }
+    // Each pixel the filter reaches sees the vertex with its camera paths' film density
+    // W_p(x, y) (camera/pixel_filter.h), which scales both the camera's density, for the
+    // weight, and the pixel's importance.
+    const Rgb contribution = v.throughput * f * (shading / state.mis.light_paths);
+    const double r = filter.radius();
+    const int y0 = std::max(0, static_cast<int>(std::floor(y - 0.5 - r)));
+    const int y1 = std::min(height - 1, static_cast<int>(std::ceil(y - 0.5 + r)));
+    const int x0 = std::max(0, static_cast<int>(std::floor(x - 0.5 - r)));
+    const int x1 = std::min(width - 1, static_cast<int>(std::ceil(x - 0.5 + r)));
+    for (int py = y0; py <= y1; ++py)
+        for (int px = x0; px <= x1; ++px) {
+            const double density = filter.density(px, py, x, y);
+            if (!(density > 0)) continue;
+            const double pdf_a = camera_pdf_a * density;
+            const double w = mis_light_trace(state.mis, v.mis, pdf_a, rev);
+            splats.emplace_back(static_cast<std::uint32_t>(py) * static_cast<std::uint32_t>(width) +
+                                    static_cast<std::uint32_t>(px),
+                                contribution * (w * pdf_a));
+        }
 }
 
 } // namespace
