@@ -91,6 +91,9 @@ public:
         // Objects at the top with an id are converted where they are referred to; the BSDFs
         // also become the scene's named materials.
         for (const Pending &pending : top_level_) convert_top_level(pending);
+        for (const Pending &pending : referable_only_)
+            if (!referred_to_.count(pending.node.attribute("id").value()))
+                warn(pending.node, *pending.source, "no object refers to this id: it is not used");
         for (const Pending &pending : unattached_area_emitters_)
             if (!referred_to_.count(pending.node.attribute("id").value()))
                 warn(pending.node, *pending.source,
@@ -110,7 +113,8 @@ private:
     struct Source {
         std::unique_ptr<pugi::xml_document> document;
         std::size_t base;
-        std::string folder; // of the file, for relative file names
+        std::string folder;    // of the file, for relative file names
+        bool before_2 = false; // a Mitsuba 0.x file, upgraded as Mitsuba 3 upgrades it
     };
     struct Pending {
         pugi::xml_node node;
@@ -191,6 +195,7 @@ private:
         if (std::string(scene.name()) != "scene")
             error(scene, current, "the root element must be <scene>, not <" + std::string(scene.name()) + ">");
         check_version(scene, current);
+        sources_.back()->before_2 = std::atoi(scene.attribute("version").value()) < 2;
         include_stack_.push_back(path);
         // An included file's <path> folders serve its own includes only: Mitsuba resolves the
         // files that properties name after parsing, with the main file's folders.
@@ -552,6 +557,53 @@ private:
         return up;
     }
 
+    // ---- Mitsuba 0.x files -----------------------------------------------------------------
+
+    // Mitsuba 3's upgrade of a property name from a file of version < 2.0 (its parser's
+    // camel_to_underscore_case): "intIOR" is "int_ior", "sampleCount" "sample_count".
+    static std::string upgraded_name(const std::string &name) {
+        std::string out;
+        for (std::size_t i = 0; i < name.size(); ++i) {
+            const unsigned char c = static_cast<unsigned char>(name[i]);
+            if (i > 0 && std::islower(static_cast<unsigned char>(name[i - 1])) && std::isupper(c)) {
+                out += '_';
+                out += static_cast<char>(std::tolower(c));
+                while (i + 1 < name.size() && std::isupper(static_cast<unsigned char>(name[i + 1])))
+                    out += static_cast<char>(std::tolower(static_cast<unsigned char>(name[++i])));
+            } else {
+                out += name[i];
+            }
+        }
+        return out;
+    }
+
+    // The rest of Mitsuba 3's upgrade (its parser's upgrade_from_v1), on an object read from
+    // such a file: diffuse's diffuse_reflectance is its reflectance, and uoffset, voffset,
+    // uscale, vscale become the texture transform to_uv (the offset first, then the scale).
+    static void upgrade_object(Json::Value &out) {
+        if (out["type"].asString() == "diffuse" && out.isMember("diffuse_reflectance") &&
+            !out.isMember("reflectance")) {
+            out["reflectance"] = out["diffuse_reflectance"];
+            out.removeMember("diffuse_reflectance");
+        }
+        double offset[2] = {0, 0}, scale[2] = {1, 1};
+        bool any = false;
+        const char *names[4] = {"uoffset", "voffset", "uscale", "vscale"};
+        for (int k = 0; k < 4; ++k) {
+            if (!out.isMember(names[k])) continue;
+            (k < 2 ? offset : scale)[k % 2] = out[names[k]].asDouble();
+            out.removeMember(names[k]);
+            any = true;
+        }
+        if (!any || out.isMember("to_uv")) return;
+        Json::Value ops(Json::arrayValue), translate(Json::objectValue), scaling(Json::objectValue);
+        for (double v : {offset[0], offset[1], 0.0}) translate["translate"].append(v);
+        for (double v : {scale[0], scale[1], 1.0}) scaling["scale"].append(v);
+        ops.append(translate);
+        ops.append(scaling);
+        out["to_uv"] = ops;
+    }
+
     // ---- objects ------------------------------------------------------------------------
 
     // An object element as {"type": ..., parameters under their Mitsuba names, nested objects
@@ -569,12 +621,14 @@ private:
             if (kind == "float" || kind == "integer" || kind == "boolean" || kind == "string" || kind == "rgb" ||
                 kind == "spectrum" || kind == "point" || kind == "vector") {
                 check_attributes(child, source, {"name", "value", "x", "y", "z"});
-                const std::string name = required(child, source, "name");
+                const std::string name =
+                    source.before_2 ? upgraded_name(required(child, source, "name")) : required(child, source, "name");
                 if (out.isMember(name)) error(child, source, "the parameter '" + name + "' is given twice");
                 out[name] = property(child, source, colour_range(tag, name));
             } else if (kind == "transform") {
                 check_attributes(child, source, {"name"});
-                out[required(child, source, "name")] = transform(child, source);
+                const std::string name = required(child, source, "name");
+                out[source.before_2 ? upgraded_name(name) : name] = transform(child, source);
             } else if (kind == "ref") {
                 check_attributes(child, source, {"id", "name"});
                 const std::string id = substitute(child, source, "id");
@@ -583,6 +637,7 @@ private:
                 referred_to_.insert(id);
                 std::string role = child.attribute("name") ? std::string(child.attribute("name").value())
                                                            : std::string(found->second.node.name());
+                if (source.before_2) role = upgraded_name(role);
                 if (role == "bsdf" && !child.attribute("name") && out["type"].asString() == "blendbsdf")
                     role = out.isMember("bsdf_0") ? "bsdf_1" : "bsdf_0";
                 if (!supported_nested(found->second.node, *found->second.source, child, source)) continue;
@@ -596,6 +651,7 @@ private:
             } else if (object_tags().count(kind)) {
                 std::string role =
                     kind == "texture" || child.attribute("name") ? required(child, source, "name") : kind;
+                if (source.before_2) role = upgraded_name(role);
                 // Mitsuba's blendbsdf takes its two nested BSDFs in order when they have no names.
                 if (kind == "bsdf" && !child.attribute("name") && out["type"].asString() == "blendbsdf")
                     role = out.isMember("bsdf_0") ? "bsdf_1" : "bsdf_0";
@@ -606,6 +662,7 @@ private:
                 error(child, source, "unknown element inside <" + tag + ">");
             }
         }
+        if (source.before_2) upgrade_object(out);
         return located(out, node, source);
     }
 
@@ -706,6 +763,10 @@ private:
             if (root.isMember("integrator") && root["integrator"].isMember("type"))
                 error(node, source, "a second <integrator>");
             integrator(object(node, source), node, source);
+        } else if (!id.empty()) {
+            // Another object with an id (a sampler, film, medium...) is read where a <ref>
+            // names it; one that nothing names is said once the whole file is read.
+            referable_only_.push_back(pending);
         } else {
             skip(node, source, "<" + tag + "> is not supported by libppm");
         }
@@ -925,6 +986,7 @@ private:
     std::vector<std::string> search_folders_;       // of <path>, the latest first, each ending in '/'
     std::set<std::string> referred_to_;             // ids named by a <ref>
     std::vector<Pending> unattached_area_emitters_; // at the top, with an id
+    std::vector<Pending> referable_only_;           // other objects at the top with an id
 };
 
 } // namespace

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Mitsuba 3 XML scene files (also Mitsuba 2 and 0.6 files, which share the syntax) read into
+// Mitsuba 3 XML scene files (also Mitsuba 2 files, and 0.5 and 0.6 ones, which Mitsuba 3's
+// upgrade of names this reader repeats) read into
 // libppm's own scene structure (docs/scene-format.md), so that one builder, with its checks and
 // messages, serves both formats.
 //

@@ -235,8 +235,9 @@ void lenient_mode_substitutes_with_a_warning_and_strict_mode_names_the_element(v
     for (const std::string &w : scene.warnings) warnings += w + "\n";
     assert_contains(warnings, "rough.xml:2:5: <emitter>: emitter type 'sunsky' is not supported by libppm: skipped");
     assert_contains(warnings, "rough.xml:4:9: <bsdf>: BSDF type 'hair' is not supported by libppm: diffuse grey");
-    assert_contains(warnings, "rough.xml:6:5: <medium>");
-    assert_int_equal(scene.substituted_at.size(), 3);
+    // The medium at the top is not used by anything: said, not substituted.
+    assert_contains(warnings, "rough.xml:6:5: <medium>: no object refers to this id: it is not used");
+    assert_int_equal(scene.substituted_at.size(), 2);
 
     // Strict: the first unsupported element is the error, with what libppm supports.
     const std::string strict = error_of([&] { read_mitsuba_xml(path, {}); });
@@ -281,11 +282,10 @@ void lenient_mode_substitutes_at_every_nesting_level(void **) {
     assert_contains(warnings, "nested.xml:8:9: <ref>: <medium> is not supported by libppm");
     assert_contains(warnings,
                     "nested.xml:11:9: <bsdf>: BSDF type 'bumpmap' is not supported by libppm: the BSDF it wraps");
-    assert_contains(warnings, "nested.xml:2:5: <medium>: <medium> is not supported by libppm: skipped");
-    if (scene.substituted_at.size() != 4)
+    if (scene.substituted_at.size() != 3)
         fail_msg("%zu substitutions:\n%s", scene.substituted_at.size(), warnings.c_str());
     assert_contains(error_of([&] { read_mitsuba_xml(path, {}); }),
-                    "nested.xml:2:5: <medium>: <medium> is not supported by libppm");
+                    "nested.xml:5:34: <texture>: texture type 'mesh_attribute' is not supported by libppm");
     const std::string texture_only = write("nested_texture.xml", R"(<scene version="3.0.0"><shape type="sphere">
 <bsdf type="blendbsdf"><bsdf type="diffuse"><texture type="mesh_attribute" name="reflectance"/></bsdf>
 <bsdf type="diffuse"/></bsdf></shape></scene>)");
@@ -480,6 +480,62 @@ void a_lookat_without_up_gets_mitsubas_frame(void **) {
     assert_close(up[1].asDouble(), 2, 0);
 }
 
+// Files of Mitsuba 0.x (version < 2.0) are upgraded as Mitsuba 3 upgrades them: camelCase
+// names in snake case, diffuse's diffuse_reflectance is its reflectance, uoffset ... vscale
+// make to_uv. The upgraded file reads as the same scene written for Mitsuba 3.
+void mitsuba_0_6_files_are_upgraded(void **) {
+    const char *old_body = R"(
+    <integrator type="path"><integer name="maxDepth" value="5"/></integrator>
+    <sensor type="perspective">
+        <float name="fov" value="45"/><string name="fovAxis" value="y"/><float name="nearClip" value="0.1"/>
+        <sampler type="independent"><integer name="sampleCount" value="32"/></sampler>
+        <film type="hdrfilm"><integer name="width" value="20"/><integer name="height" value="10"/></film>
+    </sensor>
+    <shape type="sphere">
+        <bsdf type="diffuse">
+            <texture type="bitmap" name="diffuseReflectance">
+                <string name="filename" value="t.png"/>
+                <float name="uoffset" value="0.25"/><float name="uscale" value="2"/>
+            </texture>
+        </bsdf>
+    </shape>
+    <shape type="sphere"><bsdf type="dielectric"><float name="intIOR" value="1.33"/></bsdf></shape>
+</scene>
+)";
+    const XmlScene old = read_mitsuba_xml(write("old.xml", std::string("<scene version=\"0.6.0\">") + old_body), {});
+    const Json::Value &root = old.root;
+    assert_int_equal(root["integrator"]["max_depth"].asInt(), 4);
+    assert_int_equal(root["integrator"]["passes"].asInt(), 32);
+    assert_close(root["sensor"]["near_clip"].asDouble(), 0.1, 0);
+    assert_close(root["sensor"]["fov"].asDouble(), 2 * std::atan(2 * std::tan(M_PI / 8)) * 180 / M_PI, 1e-12);
+    const Json::Value &texture = root["shapes"][0]["bsdf"]["reflectance"];
+    assert_string_equal(texture["type"].asCString(), "bitmap");
+    assert_false(texture.isMember("uoffset") || texture.isMember("uscale"));
+    assert_close(texture["to_uv"][0]["translate"][0].asDouble(), 0.25, 0);
+    assert_close(texture["to_uv"][1]["scale"][0].asDouble(), 2, 0);
+    assert_close(texture["to_uv"][1]["scale"][1].asDouble(), 1, 0);
+    assert_close(root["shapes"][1]["bsdf"]["int_ior"].asDouble(), 1.33, 0);
+    // A Mitsuba 3 file keeps its names as written (an unknown one is then the builder's error).
+    const XmlScene v3 = read_mitsuba_xml(write("new.xml", std::string("<scene version=\"3.0.0\">") + old_body), {});
+    assert_true(v3.root["shapes"][1]["bsdf"].isMember("intIOR"));
+}
+
+// A sampler (or any object) at the top with an id is read where a <ref> names it, as in
+// Mitsuba's documentation scenes; one nothing names is said.
+void a_top_level_sampler_is_read_where_it_is_referred_to(void **) {
+    const XmlScene scene = read_mitsuba_xml(write("sampler.xml", R"(<scene version="2.1.0">
+    <sampler type="independent" id="my_sampler"><integer name="sample_count" value="16"/></sampler>
+    <film type="hdrfilm" id="spare"/>
+    <sensor type="perspective"><ref id="my_sampler"/></sensor>
+    <shape type="sphere"/>
+</scene>
+)"),
+                                            {});
+    assert_int_equal(scene.root["integrator"]["passes"].asInt(), 16);
+    assert_int_equal(scene.warnings.size(), 1);
+    assert_contains(scene.warnings[0], "sampler.xml:3:5: <film>: no object refers to this id");
+}
+
 int setup(void **) { return test_make_folder(folder, sizeof folder, "ppm-xml-"); }
 int teardown(void **) {
     test_remove_folder(folder);
@@ -500,6 +556,8 @@ int main() {
         cmocka_unit_test(an_area_emitter_at_the_top_is_the_emission_of_the_shapes_that_refer_to_it),
         cmocka_unit_test(path_elements_add_folders_searched_as_mitsuba_searches_them),
         cmocka_unit_test(a_lookat_without_up_gets_mitsubas_frame),
+        cmocka_unit_test(mitsuba_0_6_files_are_upgraded),
+        cmocka_unit_test(a_top_level_sampler_is_read_where_it_is_referred_to),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
