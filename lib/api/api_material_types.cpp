@@ -117,8 +117,9 @@ uint32_t add_plastic(ppm_scene_t &scene, Params &p) {
     const ColorOrTexture c = reflectance_or_texture(scene, p, "diffuse_reflectance", Rgb(0.5));
     const double int_ior = p.positive("int_ior", kPolypropyleneIor), ext_ior = p.positive("ext_ior", kAirIor);
     const bool nonlinear = p.boolean("nonlinear", false);
+    const Rgb specular = p.reflectance("specular_reflectance", Rgb(1.0));
     p.finish();
-    return add(scene, Bsdf::coated(c.value, int_ior, ext_ior, nonlinear), c);
+    return add(scene, Bsdf::coated(c.value, int_ior, ext_ior, nonlinear, specular), c);
 }
 
 uint32_t add_thindielectric(ppm_scene_t &scene, Params &p) {
@@ -165,8 +166,10 @@ uint32_t add_roughplastic(ppm_scene_t &scene, Params &p) {
     const Roughness r = read_roughness(p, false);
     const double int_ior = p.positive("int_ior", kPolypropyleneIor), ext_ior = p.positive("ext_ior", kAirIor);
     const bool nonlinear = p.boolean("nonlinear", false);
+    const Rgb specular = p.reflectance("specular_reflectance", Rgb(1.0));
     p.finish();
-    return add(scene, Bsdf::rough_plastic(c.value, r.type, r.alpha_u, int_ior, ext_ior, r.sample_visible, nonlinear),
+    return add(scene,
+               Bsdf::rough_plastic(c.value, r.type, r.alpha_u, int_ior, ext_ior, r.sample_visible, nonlinear, specular),
                c);
 }
 

@@ -84,10 +84,13 @@ Bsdf Bsdf::dielectric(double int_ior, double ext_ior) {
     return b;
 }
 
-Bsdf Bsdf::coated(const Rgb &diffuse_reflectance, double int_ior, double ext_ior, bool nonlinear) {
+Bsdf Bsdf::coated(const Rgb &diffuse_reflectance, double int_ior, double ext_ior, bool nonlinear,
+                  const Rgb &specular_reflectance) {
     require_reflectance(diffuse_reflectance, "coated diffuse_reflectance");
+    require_reflectance(specular_reflectance, "coated specular_reflectance");
     Bsdf b;
     b.type_ = Type::Coated;
+    b.coat_specular_ = specular_reflectance;
     b.eta_ = require_eta(int_ior, ext_ior);
     const double fdr = fresnel_diffuse_reflectance(b.eta_);
     b.coat_diffuse_scale_ = 1.0 / (1.0 - fdr);
@@ -105,8 +108,9 @@ Bsdf Bsdf::null() {
 Bsdf Bsdf::with_reflectance(const Rgb &reflectance) const {
     Bsdf b = *this;
     b.reflectance_ = reflectance;
-    // Mitsuba's plastic steers samples by the lobes' mean reflectances (specular: 1).
-    b.specular_sampling_weight_ = 1.0 / (1.0 + reflectance.mean());
+    // Mitsuba's plastic steers samples by the lobes' mean reflectances.
+    const double s_mean = coat_specular_.mean(), total = s_mean + reflectance.mean();
+    b.specular_sampling_weight_ = total > 0 ? s_mean / total : 0.5;
     // A nonlinear coat: R_d / (1 - R_d F) = R_d (1 - F) / (1 - R_d F) / (1 - F), so the
     // linear lobe (R / (1 - F)) gives it with R = R_d (1 - F) / (1 - R_d F), which lies in
     // [0, R_d] for R_d, F in [0, 1].
@@ -224,7 +228,7 @@ BsdfSample Bsdf::sample(const Vec3 &wo, double u_lobe, double u1, double u2, Tra
             s.wi = reflect_local(w);
             s.pdf = p_specular;
             s.is_specular = true;
-            s.weight = Rgb(fresnel_o / p_specular);
+            s.weight = coat_specular_ * (fresnel_o / p_specular);
         } else {
             s.wi = square_to_cosine_hemisphere(u1, u2);
             const double p_diffuse = 1.0 - p_specular;

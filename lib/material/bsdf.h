@@ -147,7 +147,8 @@ public:
     // base as a real coated surface does, R_d / (1 - R_d Fdr_int) in place of
     // R_d / (1 - Fdr_int), Fdr_int = 1 - (1 - Fdr) / eta^2 the coat's internal diffuse
     // reflectance; per channel and per texel.
-    static Bsdf coated(const Rgb &diffuse_reflectance, double int_ior, double ext_ior, bool nonlinear = false);
+    static Bsdf coated(const Rgb &diffuse_reflectance, double int_ior, double ext_ior, bool nonlinear = false,
+                       const Rgb &specular_reflectance = Rgb(1.0));
     // Mitsuba 3 `conductor` (src/bsdfs/conductor.cpp): a smooth metal reflecting
     // specular_reflectance * F(cos wo) with F the unpolarised Fresnel reflectance of the
     // complex index eta + i k (material/fresnel.h). eta, k finite and >= 0 per channel. (With
@@ -180,7 +181,8 @@ public:
     // (polypropylene), ext_ior 1.000277, diffuse_reflectance 0.5.
     // nonlinear = true: R_d / (1 - R_d R_int) in place of R_d / (1 - R_int), as coated().
     static Bsdf rough_plastic(const Rgb &diffuse_reflectance, MicrofacetType distribution, double alpha, double int_ior,
-                              double ext_ior, bool sample_visible = true, bool nonlinear = false);
+                              double ext_ior, bool sample_visible = true, bool nonlinear = false,
+                              const Rgb &specular_reflectance = Rgb(1.0));
     // No surface: a specular lobe that passes light straight through (wi = -wo, weight 1),
     // the pass-through part of Mitsuba 3's `mask` (src/bsdfs/mask.cpp).
     static Bsdf null();
@@ -281,6 +283,7 @@ private:
     double specular_sampling_weight_ = 1;        // Mitsuba's s_mean / (s_mean + d_mean)
     double nonlinear_internal_reflectance_ = -1; // a nonlinear coat's Fdr_int or R_int; < 0: linear
     Rgb conductor_eta_, conductor_k_;            // complex index of refraction (conductors)
+    Rgb coat_specular_ = Rgb(1.0);               // the coats' specular_reflectance (plastic, rough plastic)
     MicrofacetDistribution distribution_;        // rough conductor, rough dielectric, rough plastic
     const RoughCoatTable *coat_table_ = nullptr; // rough plastic (interned, immortal)
 };

@@ -179,11 +179,13 @@ Bsdf Bsdf::rough_dielectric(MicrofacetType distribution, double alpha_u, double 
 }
 
 Bsdf Bsdf::rough_plastic(const Rgb &diffuse_reflectance, MicrofacetType distribution, double alpha, double int_ior,
-                         double ext_ior, bool sample_visible, bool nonlinear) {
+                         double ext_ior, bool sample_visible, bool nonlinear, const Rgb &specular_reflectance) {
     require_reflectance(diffuse_reflectance, "roughplastic diffuse_reflectance");
+    require_reflectance(specular_reflectance, "roughplastic specular_reflectance");
     require_alpha(alpha, "roughplastic alpha");
     Bsdf b;
     b.type_ = Type::RoughPlastic;
+    b.coat_specular_ = specular_reflectance;
     b.eta_ = require_distinct_eta(int_ior, ext_ior, "roughplastic");
     b.distribution_ = MicrofacetDistribution(distribution, alpha, alpha, sample_visible);
     // The distribution clamps alpha at 1e-4; the table is made for the clamped value.
@@ -321,9 +323,10 @@ double Bsdf::pdf_rough_dielectric(const Vec3 &wo, const Vec3 &wi) const {
 }
 
 // Rough plastic (Mitsuba roughplastic.cpp, nonlinear = false), on wo's side (w.z > 0):
-//   f = F(w.h) D(h) G / (4 cos_o cos_i)                                (the rough coat)
+//   f = S F(w.h) D(h) G / (4 cos_o cos_i)                              (the rough coat)
 //     + R_d / (eta^2 (1 - R_int)) T(cos_o) T(cos_i) / pi               (the base)
-// with T the coat's tabulated transmittance and R_int its internal diffuse reflectance. The
+// with S the specular_reflectance, T the coat's tabulated transmittance and R_int its internal
+// diffuse reflectance. The
 // coat is picked with Mitsuba's probability (1 - T(cos_o)) s / ((1 - T(cos_o)) s + T(cos_o) (1 - s)),
 // s = specular_sampling_weight_, and a sample's weight is f cos / pdf of the whole mixture.
 double Bsdf::rough_plastic_coat_probability(double cos_o) const {
@@ -341,7 +344,7 @@ Rgb Bsdf::eval_rough_plastic(const Vec3 &w, const Vec3 &wi) const {
         fresnel_dielectric(dot(w, h), eta_) * distribution_.eval(h) * distribution_.G(w, wi, h) / (4.0 * w.z * wi.z);
     const double base =
         coat_diffuse_scale_ * coat_table_->transmittance_at(w.z) * coat_table_->transmittance_at(wi.z) * kInvPi;
-    return Rgb(coat) + reflectance_ * base;
+    return coat_specular_ * coat + reflectance_ * base;
 }
 
 double Bsdf::pdf_rough_plastic(const Vec3 &w, const Vec3 &wi) const {

@@ -324,6 +324,39 @@ void nonlinear_coated_albedo_sums_the_internal_bounces(void **) {
     assert_close(rough.eval(wo, wi).b - coat, (linear.eval(wo, wi).b - coat) * (1 - r_int) / (1 - d * r_int), 1e-12);
 }
 
+// specular_reflectance S scales the coats' reflection (Mitsuba's plastic and roughplastic):
+// over a black base the albedo is S F (smooth coat) and S times the coat's albedo (rough),
+// per channel, and the base lobe does not change; sampling steers by mean(S) against the
+// base's mean, so a grey S = 0 never samples the coat.
+void specular_reflectance_scales_the_coat(void **) {
+    const Rgb s{0.2, 0.5, 0.9};
+    for (double c : kCosines) {
+        const Vec3 wo{0, std::sqrt(1 - c * c), c};
+        const double f = fresnel_dielectric(c, 1.5);
+        // Over a black base every sample takes the coat: the weight is S F exactly.
+        const Estimate smooth =
+            sampled_albedo(Bsdf::coated(Rgb(0.0), 1.5, 1.0, false, s), wo, TransportMode::Radiance, 11);
+        for (int i = 0; i < 3; ++i) assert_close(smooth.mean(i), (i == 0 ? s.r : i == 1 ? s.g : s.b) * f, 1e-9);
+        // The same samples (the coat is always picked over a black base): exactly S times.
+        const Estimate white =
+            sampled_albedo(Bsdf::rough_plastic(Rgb(0.0), MicrofacetType::GGX, 0.3, 1.5, 1.0, true, false), wo,
+                           TransportMode::Radiance, 12);
+        const Rgb rough_white(white.mean(0), white.mean(1), white.mean(2));
+        assert_albedo(sampled_albedo(Bsdf::rough_plastic(Rgb(0.0), MicrofacetType::GGX, 0.3, 1.5, 1.0, true, false, s),
+                                     wo, TransportMode::Radiance, 12),
+                      Rgb(s.r * rough_white.r, s.g * rough_white.g, s.b * rough_white.b));
+    }
+    const Vec3 wo = direction(40 * kDeg, 0), wi = direction(20 * kDeg, 1);
+    const Bsdf plain = Bsdf::rough_plastic(Rgb(0.4), MicrofacetType::Beckmann, 0.3, 1.5, 1.0);
+    const Bsdf tinted = Bsdf::rough_plastic(Rgb(0.4), MicrofacetType::Beckmann, 0.3, 1.5, 1.0, true, false, s);
+    const Bsdf black = Bsdf::rough_plastic(Rgb(0.0), MicrofacetType::Beckmann, 0.3, 1.5, 1.0);
+    const double coat = black.eval(wo, wi).g;
+    assert_close(tinted.eval(wo, wi).g, plain.eval(wo, wi).g - coat + s.g * coat, 1e-12);
+    const Bsdf matte = Bsdf::coated(Rgb(0.5), 1.5, 1.0, false, Rgb(0.0));
+    for (double u : {0.0, 0.3, 0.999}) assert_false(matte.sample(wo, u, 0.4, 0.6, TransportMode::Radiance).is_specular);
+    expect_invalid_argument([] { Bsdf::coated(Rgb(0.5), 1.5, 1.0, false, Rgb(1.5)); });
+}
+
 // Glass: in importance (photon) mode every sample carries weight 1, so R + T = 1 and the
 // reflected fraction is R; in radiance mode transmission is scaled by 1/eta_t^2.
 void glass_conserves_energy_in_importance_mode(void **) {
@@ -526,6 +559,7 @@ int main() {
         cmocka_unit_test(back_side_of_opaque_materials_mirrors_the_front),
         cmocka_unit_test(with_reflectance_keeps_the_coat),
         cmocka_unit_test(nonlinear_coated_albedo_sums_the_internal_bounces),
+        cmocka_unit_test(specular_reflectance_scales_the_coat),
         cmocka_unit_test(warp_sine_and_cosine_match_libm),
         cmocka_unit_test(invalid_parameters_are_rejected),
     };
