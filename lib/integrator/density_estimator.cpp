@@ -2,6 +2,7 @@
 #include "integrator/density_estimator.h"
 
 #include "core/error.h"
+#include "shading/shading_normals.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -32,9 +33,12 @@ void DensityEstimator::store(std::uint32_t slot, const VisiblePoint &vp, double 
     const double side = vp.wo_local.z >= 0 ? 1.0 : -1.0;
     const Vec3 shading_normal = vp.frame.n * side;
     GatherPoint &g = gather_[slot];
+    // A shading normal that is the geometric one up to rounding is stored as that one, so that
+    // shading_is_geometric() holds for it and no correction is made (shading/shading_normals.h).
+    const bool same = std::fabs(dot(vp.frame.n, vp.normal)) >= 1.0 - kShadingNormalTolerance;
     for (int a = 0; a < 3; ++a) {
         g.normal[a] = static_cast<float>(vp.normal[a]);
-        g.shading_normal[a] = static_cast<float>(shading_normal[a]);
+        g.shading_normal[a] = same ? g.normal[a] : static_cast<float>(shading_normal[a]);
     }
     g.lobe = vp.bsdf.fixed_wo(vp.wo_local, vp.weight);
     if (g.lobe.needs_full_eval()) {

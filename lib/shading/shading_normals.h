@@ -27,12 +27,15 @@
 
 namespace ppm {
 
-// Whether `sp`'s shading normal is its geometric one (up to orientation), so that no
-// correction is needed.
+// 1 - |cos| between the normals below which they count as one (an angle of about 1.4e-6).
+constexpr double kShadingNormalTolerance = 1e-12;
+
+// Whether `sp`'s shading normal is its geometric one (up to orientation and rounding: a flat
+// mesh's stored normals differ from its computed face normals in the last bits), so that no
+// correction is made. Rounding must not switch the correction on: at a corner, flux that
+// landed on the neighbouring face would take |wi . ns| / |wi . ng'| for nothing.
 inline bool shading_normal_is_geometric(const SurfacePoint &sp) {
-    const Vec3 &n = sp.frame.n;
-    return (n.x == sp.ng.x && n.y == sp.ng.y && n.z == sp.ng.z) ||
-           (n.x == -sp.ng.x && n.y == -sp.ng.y && n.z == -sp.ng.z);
+    return std::fabs(dot(sp.frame.n, sp.ng)) >= 1.0 - kShadingNormalTolerance;
 }
 
 // |a . ns| |b . ng| / (|a . ng| |b . ns|) for a light path arriving from a and leaving along
