@@ -4,9 +4,10 @@
 //   E <material> <mode> wo.x wo.y wo.z wi.x wi.y wi.z  ->  f.r f.g f.b pdf
 //   A <material> <mode> wo.x wo.y wo.z <samples>       ->  mean sample weight (r g b), the albedo
 //   S <material> <mode> wo.x wo.y wo.z <u_lobe>        ->  wi.x wi.y wi.z pdf weight.r specular
-// <material> is five words: type (thindielectric, roughdielectric, roughplastic) distribution
+// <material> is ten words: type (thindielectric, roughdielectric, roughplastic) distribution
 // (beckmann, ggx) alpha_u alpha_v int_ior ext_ior reflectance (one grey value) sample_visible
-// (0/1), i.e. eight tokens; <mode> is radiance or importance.
+// (0/1) nonlinear (0/1) specular_reflectance (one grey value); <mode> is radiance or
+// importance.
 #include "material/bsdf.h"
 #include "material/microfacet.h"
 
@@ -29,15 +30,15 @@ double uniform() { // splitmix64
 
 Bsdf read_material(std::istream &in, TransportMode *mode) {
     std::string type, dist, mode_name;
-    double au, av, int_ior, ext_ior, refl;
-    int visible;
-    in >> type >> dist >> au >> av >> int_ior >> ext_ior >> refl >> visible >> mode_name;
+    double au, av, int_ior, ext_ior, refl, specular;
+    int visible, nonlinear;
+    in >> type >> dist >> au >> av >> int_ior >> ext_ior >> refl >> visible >> nonlinear >> specular >> mode_name;
     MicrofacetType t = MicrofacetType::Beckmann;
     parse_microfacet_type(dist.c_str(), &t);
     *mode = mode_name == "importance" ? TransportMode::Importance : TransportMode::Radiance;
     if (type == "thindielectric") return Bsdf::thin_dielectric(int_ior, ext_ior);
     if (type == "roughdielectric") return Bsdf::rough_dielectric(t, au, av, int_ior, ext_ior, visible != 0);
-    return Bsdf::rough_plastic(Rgb(refl), t, au, int_ior, ext_ior, visible != 0);
+    return Bsdf::rough_plastic(Rgb(refl), t, au, int_ior, ext_ior, visible != 0, nonlinear != 0, Rgb(specular));
 }
 
 } // namespace

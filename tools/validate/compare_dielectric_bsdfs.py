@@ -35,6 +35,9 @@ CASES = {
     "roughplastic-beckmann-0.1": dict(type="roughplastic", diffuse_reflectance=0.5),
     "roughplastic-ggx-0.3": dict(type="roughplastic", distribution="ggx", alpha=0.3, diffuse_reflectance=0.8),
     "roughplastic-beckmann-0.6": dict(type="roughplastic", alpha=0.6, diffuse_reflectance=0.3, int_ior=1.6),
+    "roughplastic-nonlinear": dict(type="roughplastic", alpha=0.2, diffuse_reflectance=0.7, nonlinear=True),
+    "roughplastic-specular-0.4": dict(type="roughplastic", distribution="ggx", alpha=0.3, diffuse_reflectance=0.6,
+                                      specular_reflectance=0.4),
 }
 DEFAULT_IOR = {"thindielectric": 1.5046, "roughdielectric": 1.5046, "roughplastic": 1.49}
 
@@ -44,12 +47,14 @@ def params(c):
     return dict(type=c["type"], distribution=c.get("distribution", "beckmann"),
                 alpha_u=c.get("alpha_u", alpha), alpha_v=c.get("alpha_v", alpha),
                 int_ior=c.get("int_ior", DEFAULT_IOR[c["type"]]), ext_ior=c.get("ext_ior", 1.000277),
-                reflectance=c.get("diffuse_reflectance", 0.5), sample_visible=c.get("sample_visible", True))
+                reflectance=c.get("diffuse_reflectance", 0.5), sample_visible=c.get("sample_visible", True),
+                nonlinear=c.get("nonlinear", False), specular=c.get("specular_reflectance", 1.0))
 
 
 def material_words(p, mode):
     return (f"{p['type']} {p['distribution']} {p['alpha_u']!r} {p['alpha_v']!r} {p['int_ior']!r} "
-            f"{p['ext_ior']!r} {p['reflectance']!r} {int(p['sample_visible'])} {mode}")
+            f"{p['ext_ior']!r} {p['reflectance']!r} {int(p['sample_visible'])} {int(p['nonlinear'])} "
+            f"{p['specular']!r} {mode}")
 
 
 def mitsuba_bsdf(mi, p):
@@ -57,8 +62,9 @@ def mitsuba_bsdf(mi, p):
     if p["type"] != "thindielectric":
         d.update(distribution=p["distribution"], sample_visible=p["sample_visible"])
         if p["type"] == "roughplastic":
-            d.update(alpha=p["alpha_u"], nonlinear=False,
-                     diffuse_reflectance={"type": "rgb", "value": [p["reflectance"]] * 3})
+            d.update(alpha=p["alpha_u"], nonlinear=p["nonlinear"],
+                     diffuse_reflectance={"type": "rgb", "value": [p["reflectance"]] * 3},
+                     specular_reflectance={"type": "rgb", "value": [p["specular"]] * 3})
         else:
             d.update(alpha_u=p["alpha_u"], alpha_v=p["alpha_v"])
     return mi.load_dict(d)
