@@ -1054,7 +1054,11 @@ PPM_API void ppm_scene_file_release(ppm_scene_file file);
 /* The file's committed scene, retained for the caller (release it when done). Changing that
  * scene changes it for the file's later renderers too. Errors: INVALID_ARGUMENT (NULL). */
 PPM_API ppm_status ppm_scene_file_get_scene(ppm_scene_file file, ppm_scene *out_scene);
-/* The file's camera (`sensor`) with its film size. Errors: INVALID_ARGUMENT (NULL). */
+/* The file's camera (`sensor`) with its film size, in the first camera struct, which holds
+ * neither a principal point offset nor a pixel filter: the filter is left out (a renderer
+ * made from this struct uses the box), and a camera with an offset is refused. New code uses
+ * ppm_scene_file_get_camera_v2, which holds both. Errors: INVALID_ARGUMENT (NULL),
+ * UNSUPPORTED (the file's camera has a principal point offset). */
 PPM_API ppm_status ppm_scene_file_get_camera(ppm_scene_file file, ppm_camera *out_camera);
 /* The same into an extensible camera: `size` set by the caller as described at
  * ppm_renderer_get_camera_v2. Errors: INVALID_ARGUMENT (NULL, size too small). */

@@ -45,6 +45,15 @@ PixelFilterAxis::PixelFilterAxis(const PixelFilterSettings &settings, int size) 
         table_[i] = mitsuba_weight(settings.type, parameter, radius_, -radius_ + i * step_);
     cdf_[0] = 0;
     for (int i = 1; i <= kSteps; ++i) cdf_[i] = cdf_[i - 1] + 0.5 * (table_[i - 1] + table_[i]) * step_;
+    cdf_lo_.resize(size);
+    mass_.resize(size);
+    for (int pixel = 0; pixel < size; ++pixel) {
+        // The offsets the image allows, within the filter's support.
+        const double centre = pixel + 0.5;
+        const double lo = std::max(-radius_, -centre), hi = std::min(radius_, size - centre);
+        cdf_lo_[pixel] = cdf_at(lo);
+        mass_[pixel] = cdf_at(hi) - cdf_lo_[pixel];
+    }
 }
 
 double PixelFilterAxis::weight_at(double offset) const {
@@ -66,10 +75,8 @@ double PixelFilterAxis::cdf_at(double offset) const {
 double PixelFilterAxis::sample(int pixel, double u) const {
     if (is_box()) return pixel + u;
     const double centre = pixel + 0.5;
-    // The offsets the image allows, within the filter's support.
     const double lo = std::max(-radius_, -centre), hi = std::min(radius_, size_ - centre);
-    const double c_lo = cdf_at(lo), c_hi = cdf_at(hi);
-    const double target = c_lo + u * (c_hi - c_lo);
+    const double target = cdf_lo_[pixel] + u * mass_[pixel];
     // The step holding the target, then the root of the linear piece's quadratic integral.
     const int i = std::clamp(static_cast<int>(std::upper_bound(cdf_.begin(), cdf_.end(), target) - cdf_.begin()) - 1, 0,
                              kSteps - 1);
@@ -87,11 +94,9 @@ double PixelFilterAxis::sample(int pixel, double u) const {
 double PixelFilterAxis::density(int pixel, double x) const {
     if (is_box()) return x >= pixel && x < pixel + 1 ? 1.0 : 0.0;
     if (!(x >= 0 && x <= size_)) return 0;
-    const double centre = pixel + 0.5, offset = x - centre;
+    const double offset = x - (pixel + 0.5);
     if (!(std::fabs(offset) <= radius_)) return 0;
-    const double lo = std::max(-radius_, -centre), hi = std::min(radius_, size_ - centre);
-    const double mass = cdf_at(hi) - cdf_at(lo);
-    return mass > 0 ? weight_at(offset) / mass : 0.0;
+    return mass_[pixel] > 0 ? weight_at(offset) / mass_[pixel] : 0.0;
 }
 
 void PixelFilter::sample(int px, int py, double u1, double u2, double *x, double *y, double *density) const {

@@ -54,6 +54,10 @@ private:
     std::vector<double> table_; // w at the step boundaries (empty for the box)
     std::vector<double> cdf_;   // its running integral at the same points
     double step_ = 0;
+    // Per pixel: the table's integral up to the image's near edge (or the support's), and its
+    // mass within the image, which normalises W_pixel (computed once: light tracing asks for
+    // the densities of some 25 pixels per vertex).
+    std::vector<double> cdf_lo_, mass_;
 };
 
 // Both axes of a filter over a width x height image.

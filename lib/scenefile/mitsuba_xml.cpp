@@ -823,29 +823,22 @@ private:
         return value;
     }
 
-    Json::Value emitter(Json::Value value) {
+    // Whether the emitter or shape `value` (of element `tag`) has a type libppm renders;
+    // otherwise an error, or with --lenient a warning, and it is skipped.
+    bool renders_type(const Json::Value &value, const char *tag) {
         const std::string type = value["type"].asString();
-        if (!renderable("emitter").count(type)) {
-            const std::string what = "emitter type '" + type + "' is not supported by libppm";
-            if (!options_.lenient)
-                error(value, "emitter",
-                      what + supported_list("emitter") + " (with --lenient it is skipped with a warning)");
-            substituted(value, "emitter", what + ": skipped");
-            return Json::Value();
-        }
-        return value;
+        if (renderable(tag).count(type)) return true;
+        const std::string what = std::string(tag) + " type '" + type + "' is not supported by libppm";
+        if (!options_.lenient)
+            error(value, tag, what + supported_list(tag) + " (with --lenient it is skipped with a warning)");
+        substituted(value, tag, what + ": skipped");
+        return false;
     }
 
+    Json::Value emitter(Json::Value value) { return renders_type(value, "emitter") ? value : Json::Value(); }
+
     Json::Value shape(Json::Value value) {
-        const std::string type = value["type"].asString();
-        if (!renderable("shape").count(type)) {
-            const std::string what = "shape type '" + type + "' is not supported by libppm";
-            if (!options_.lenient)
-                error(value, "shape",
-                      what + supported_list("shape") + " (with --lenient it is skipped with a warning)");
-            substituted(value, "shape", what + ": skipped");
-            return Json::Value();
-        }
+        if (!renders_type(value, "shape")) return Json::Value();
         if (value.isMember("bsdf")) value["bsdf"] = bsdf(value["bsdf"]);
         if (value.isMember("emitter")) {
             Json::Value emitter = this->emitter(value["emitter"]);

@@ -46,6 +46,8 @@ void trace_to_camera(const PassInputs &in, const VcmPassState &state, const VcmL
     const PixelFilter &filter = camera.filter();
     const int width = camera.width(), height = camera.height();
     if (filter.is_box()) {
+        // The one pixel holding the vertex, weighed in the order the images were made before
+        // the filters, so that they stay the same bits.
         if (!(x < width && y < height)) return;
         const double w = mis_light_trace(state.mis, v.mis, camera_pdf_a, rev);
         const std::uint32_t px = static_cast<std::uint32_t>(x), py = static_cast<std::uint32_t>(y);
